@@ -1,0 +1,11 @@
+#pragma once
+// Each subcommand lives in its own file: setup_<cmd> registers its options on the app and
+// the callback that runs it. main() only wires them and turns exceptions into exit codes.
+#include <CLI/CLI.hpp>
+
+namespace imunoise::cli {
+
+void setup_dev(CLI::App& app);
+void setup_simulate(CLI::App& app);
+
+}  // namespace imunoise::cli

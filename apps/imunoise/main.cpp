@@ -1,0 +1,34 @@
+// imunoise command line: noise analysis of inertial sensors.
+#include <cstdio>
+#include <exception>
+#include <new>
+
+#include <fmt/core.h>
+
+#include "commands.hpp"
+#include "imunoise/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"imunoise: noise analysis of inertial sensors (Allan family, noise model, navigation error)"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "imunoise 0.1.0");
+  imunoise::cli::setup_dev(app);
+  imunoise::cli::setup_simulate(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    // CLI11 reports usage errors with its own exit codes; the contract says 1 for bad arguments.
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 1;
+  } catch (const imunoise::InputError& e) {
+    fmt::print(stderr, "imunoise: error: {}\n", e.what());
+    return 1;
+  } catch (const std::bad_alloc&) {
+    fmt::print(stderr, "imunoise: internal error: out of memory\n");
+    return 2;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "imunoise: internal error: {}\n", e.what());
+    return 2;
+  }
+  return 0;
+}

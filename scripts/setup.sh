@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# Installs every Debian package imunoise needs on a fresh Debian 12 machine, then builds.
+# Usage: scripts/setup.sh [preset]   (default preset: default)
+set -euo pipefail
+here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+preset="${1:-default}"
+
+packages=(
+  build-essential cmake ninja-build pkg-config
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libfast-float-dev libcli11-dev libfmt-dev nlohmann-json3-dev
+  libboost-dev libeigen3-dev libyaml-cpp-dev
+  clang libclang-rt-14-dev
+  python3-dev python3-numpy python3-pytest pybind11-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  sudo_cmd=""
+  [ "$(id -u)" -eq 0 ] || sudo_cmd="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $sudo_cmd apt-get update -qq
+  $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+cd "$here"
+cmake --preset "$preset" >/dev/null
+cmake --build --preset "$preset" -j "$(nproc)"
