@@ -23,6 +23,32 @@ std::size_t chunk_length(std::size_t n_starts, std::size_t n_factors) {
   return chunk;
 }
 
+// Far factors view x as a matrix with `columns` columns (a power of two) and at most
+// kMaxTileRows rows. A factor m that is a multiple of `columns` is a lag of m/columns rows,
+// so its terms for a tile of kTileWidth columns only involve that tile: gathered once into a
+// contiguous buffer (1 MB, in L2) it serves every far factor. Gathering beats reading the
+// tile in place: rows a power of two apart would all fall into the same few cache sets.
+constexpr std::size_t kTileWidth = 64;
+constexpr std::size_t kMaxTileRows = 2048;
+std::size_t matrix_columns(std::size_t n_phase) {
+  std::size_t columns = 2 * kTileWidth;
+  while (n_phase / columns > kMaxTileRows) columns *= 2;
+  return columns;
+}
+
+// Copies rows [0, rows) of columns [c0, c0 + kTileWidth) of the matrix view into `tile`
+// (row-major, kTileWidth wide); cells past the end of x are zero and never used.
+void gather_tile(std::span<const double> x, std::size_t columns, std::size_t c0,
+                 std::size_t rows, std::vector<double>& tile) {
+  tile.assign(rows * kTileWidth, 0.0);
+  for (std::size_t r = 0; r < rows; ++r) {
+    const std::size_t begin = r * columns + c0;
+    if (begin >= x.size()) break;
+    const std::size_t len = std::min(kTileWidth, x.size() - begin);
+    std::copy_n(x.data() + begin, len, tile.data() + r * kTileWidth);
+  }
+}
+
 std::size_t overlapping_count(std::size_t n_phase, int order, std::size_t m) {
   const std::size_t span = static_cast<std::size_t>(order) * m;
   return n_phase > span ? n_phase - span : 0;
@@ -32,37 +58,84 @@ std::size_t overlapping_count(std::size_t n_phase, int order, std::size_t m) {
 
 DifferenceSums overlapping_difference_sums(std::span<const double> phase, int order,
                                            std::span<const std::size_t> factors, unsigned threads) {
+  const std::size_t n_phase = phase.size();
   const std::size_t n_factors = factors.size();
   DifferenceSums result{std::vector<double>(n_factors, 0.0), std::vector<std::size_t>(n_factors)};
-  std::size_t max_count = 0;
   for (std::size_t t = 0; t < n_factors; ++t) {
-    result.n[t] = overlapping_count(phase.size(), order, factors[t]);
-    max_count = std::max(max_count, result.n[t]);
+    result.n[t] = overlapping_count(n_phase, order, factors[t]);
   }
-  if (max_count == 0) return result;
 
-  const std::size_t chunk = chunk_length(max_count, n_factors);
-  const std::size_t n_chunks = (max_count + chunk - 1) / chunk;
-  std::vector<double> partial(n_chunks * n_factors, 0.0);
+  // Near factors run over contiguous blocks of start indices; far factors (multiples of the
+  // column count of the matrix view, see kernels.hpp) run down column tiles. Either way each
+  // cache line of x comes from memory about once per pass instead of once per factor.
+  const std::size_t columns = matrix_columns(n_phase);
+  std::vector<std::size_t> near, far;
+  for (std::size_t t = 0; t < n_factors; ++t) {
+    if (result.n[t] == 0) continue;
+    (factors[t] % columns == 0 ? far : near).push_back(t);
+  }
+  std::size_t near_count = 0;
+  for (const std::size_t t : near) near_count = std::max(near_count, result.n[t]);
+  const std::size_t chunk = chunk_length(near_count, near.size());
+  const std::size_t n_chunks = near.empty() ? 0 : (near_count + chunk - 1) / chunk;
+  const std::size_t n_tiles = far.empty() ? 0 : columns / kTileWidth;
+
+  std::vector<double> near_partial(n_chunks * near.size(), 0.0);
+  std::vector<double> far_partial(n_tiles * far.size(), 0.0);
   const auto kernel = order == 2 ? sum_sq_second_difference : sum_sq_third_difference;
   const double* x = phase.data();
 
-  parallel_for(n_chunks, threads, [&](std::size_t c) {
-    double* out = partial.data() + c * n_factors;
-    const std::size_t chunk_end = std::min(max_count, (c + 1) * chunk);
+  auto run_chunk = [&](std::size_t c) {
+    double* out = near_partial.data() + c * near.size();
+    const std::size_t chunk_end = std::min(near_count, (c + 1) * chunk);
     for (std::size_t k0 = c * chunk; k0 < chunk_end; k0 += kBlock) {
       const std::size_t k1 = std::min(chunk_end, k0 + kBlock);
-      for (std::size_t t = 0; t < n_factors; ++t) {
-        const std::size_t end = std::min(k1, result.n[t]);
-        if (end > k0) out[t] += kernel(x + k0, factors[t], end - k0);
+      for (std::size_t i = 0; i < near.size(); ++i) {
+        const std::size_t end = std::min(k1, result.n[near[i]]);
+        if (end > k0) out[i] += kernel(x + k0, factors[near[i]], end - k0);
       }
+    }
+  };
+  const std::size_t rows = (n_phase + columns - 1) / columns;
+  auto run_tile = [&](std::size_t tile_index) {
+    thread_local std::vector<double> tile;
+    const std::size_t c0 = tile_index * kTileWidth;
+    gather_tile(phase, columns, c0, rows, tile);
+    double* out = far_partial.data() + tile_index * far.size();
+    for (std::size_t i = 0; i < far.size(); ++i) {
+      const std::size_t m = factors[far[i]];
+      const std::size_t span = static_cast<std::size_t>(order) * m;
+      const std::size_t lag = m / columns * kTileWidth;  // m samples = m/columns tile rows
+      // Start k = r*columns + c is valid while k + span <= n_phase - 1: rows valid for every
+      // column of the tile run contiguously; the (at most one) ragged row is done per column.
+      auto valid_rows = [&](std::size_t c) -> std::size_t {
+        return c + span <= n_phase - 1 ? (n_phase - 1 - span - c) / columns + 1 : 0;
+      };
+      const std::size_t full = valid_rows(c0 + kTileWidth - 1);
+      double sum = full > 0 ? kernel(tile.data(), lag, full * kTileWidth) : 0.0;
+      for (std::size_t c = 0; c < kTileWidth; ++c) {
+        if (valid_rows(c0 + c) > full) sum += kernel(tile.data() + full * kTileWidth + c, lag, 1);
+      }
+      out[i] = sum;
+    }
+  };
+  parallel_for(n_chunks + n_tiles, threads, [&](std::size_t item) {
+    if (item < n_chunks) {
+      run_chunk(item);
+    } else {
+      run_tile(item - n_chunks);
     }
   });
 
-  for (std::size_t t = 0; t < n_factors; ++t) {
+  for (std::size_t i = 0; i < near.size(); ++i) {
     long double total = 0.0L;
-    for (std::size_t c = 0; c < n_chunks; ++c) total += partial[c * n_factors + t];
-    result.sum_sq[t] = static_cast<double>(total);
+    for (std::size_t c = 0; c < n_chunks; ++c) total += near_partial[c * near.size() + i];
+    result.sum_sq[near[i]] = static_cast<double>(total);
+  }
+  for (std::size_t i = 0; i < far.size(); ++i) {
+    long double total = 0.0L;
+    for (std::size_t tile = 0; tile < n_tiles; ++tile) total += far_partial[tile * far.size() + i];
+    result.sum_sq[far[i]] = static_cast<double>(total);
   }
   return result;
 }

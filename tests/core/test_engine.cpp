@@ -56,6 +56,20 @@ TEST_P(EveryEstimator, MatchesDefinitionForEveryFactor) {
   }
 }
 
+// Long records take a second path for factors that are multiples of a power-of-two column
+// count (cache tiles); check it, and the ragged end of the record, against the definition.
+TEST(OverlappingTiles, MatchDefinitionOnLongRecordWithOctaveFactors) {
+  for (const Estimator e : {Estimator::oadev, Estimator::ohdev})
+  for (const std::size_t n : {300007u, 262144u, 262145u}) {
+    const auto phase = phase_of(noise(n, 15, 1.0), 0.005);
+    const auto factors = averaging_factors(TauGrid{}, 200, max_averaging_factor(e, phase.size()));
+    for (const auto& p : compute_deviation(e, phase, 0.005, factors)) {
+      EXPECT_NEAR(p.dev / test::reference_deviation(e, phase, 0.005, p.m), 1.0, 1e-12)
+          << estimator_name(e) << " n=" << n << " m=" << p.m;
+    }
+  }
+}
+
 // A constant rate offset 1e4 times the noise must not change any deviation (design target:
 // 1e-9 relative; the offset is removed before integration, so only the rounding of the
 // offset samples themselves, ~1e4 * 2^-53 = 1e-12 of the noise, can leak in).

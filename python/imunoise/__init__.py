@@ -1,0 +1,27 @@
+"""imunoise: noise analysis of inertial sensors.
+
+AllanTools-compatible estimator functions: ``imunoise.oadev(data, rate=1.0,
+data_type="phase", taus="octave")`` returns ``(taus, devs, errs, ns)``. As in AllanTools the
+default data_type is "phase" (angle); pass data_type="freq" (or "rate") for gyro rate samples.
+Deviations are in the unit of the rate; taus in seconds.
+"""
+from ._imunoise import InputError, deviation
+
+__all__ = ["InputError", "deviation", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev"]
+
+
+def _estimator(name):
+    def run(data, rate=1.0, data_type="phase", taus="octave", threads=0):
+        return deviation(name, data, rate, data_type, taus, threads)
+
+    run.__name__ = name
+    run.__doc__ = f"{name}(data, rate=1.0, data_type='phase', taus='octave') -> (taus, devs, errs, ns)"
+    return run
+
+
+adev = _estimator("adev")
+oadev = _estimator("oadev")
+mdev = _estimator("mdev")
+tdev = _estimator("tdev")
+hdev = _estimator("hdev")
+ohdev = _estimator("ohdev")

@@ -1,0 +1,13 @@
+// Python bindings: one register_<concept> function per file; this file only assembles them.
+#include <pybind11/pybind11.h>
+
+namespace py = pybind11;
+
+namespace imunoise::python {
+void register_deviation(py::module_& m);
+}
+
+PYBIND11_MODULE(_imunoise, m) {
+  m.doc() = "imunoise: noise analysis of inertial sensors (compiled core)";
+  imunoise::python::register_deviation(m);
+}

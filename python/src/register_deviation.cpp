@@ -1,0 +1,83 @@
+// Deviation estimators over NumPy arrays, without copying the input.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <span>
+#include <string>
+
+#include "imunoise/deviation.hpp"
+#include "imunoise/error.hpp"
+#include "imunoise/phase.hpp"
+#include "imunoise/series.hpp"
+#include "imunoise/tau_grid.hpp"
+
+namespace py = pybind11;
+
+namespace imunoise::python {
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+std::span<const double> view(const Array& a) {
+  if (a.ndim() != 1) throw InputError("data must be a 1-D array, got " + std::to_string(a.ndim()) + "-D");
+  return {a.data(), static_cast<std::size_t>(a.shape(0))};
+}
+
+// AllanTools-compatible: returns (taus, devs, errs, ns); errs = dev / sqrt(n) as AllanTools.
+py::tuple deviation(const std::string& name, const Array& data, double rate,
+                    const std::string& data_type, const py::object& taus, unsigned threads) {
+  const Estimator estimator = parse_estimator(name);
+  if (!(rate > 0)) throw InputError("rate must be positive (Hz), got " + std::to_string(rate));
+  const auto samples = view(data);
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    if (!std::isfinite(samples[i])) {
+      throw InputError("sample " + std::to_string(i) + " is not finite; remove or repair it");
+    }
+  }
+  const double tau0_s = 1.0 / rate;
+  std::vector<double> integrated;
+  std::span<const double> phase = samples;
+  {
+    py::gil_scoped_release release;
+    if (parse_input_kind(data_type) == InputKind::rate) {
+      integrated = phase_from_rate(samples, tau0_s, compensated_mean(samples));
+      phase = integrated;
+    }
+  }
+  TauGrid grid;
+  if (py::isinstance<py::str>(taus)) {
+    grid = parse_tau_grid(taus.cast<std::string>());
+  } else if (!taus.is_none()) {
+    grid.kind = TauGrid::Kind::taus_s;
+    grid.taus_s = taus.cast<std::vector<double>>();
+  }
+  const auto factors = averaging_factors(grid, rate, max_averaging_factor(estimator, phase.size()));
+  std::vector<DevPoint> points;
+  {
+    py::gil_scoped_release release;
+    points = compute_deviation(estimator, phase, tau0_s, factors, {threads});
+  }
+  const auto n = static_cast<py::ssize_t>(points.size());
+  py::array_t<double> out_taus(n), out_devs(n), out_errs(n);
+  py::array_t<long long> out_ns(n);
+  for (py::ssize_t i = 0; i < n; ++i) {
+    const auto& p = points[static_cast<std::size_t>(i)];
+    out_taus.mutable_at(i) = p.tau_s;
+    out_devs.mutable_at(i) = p.dev;
+    out_errs.mutable_at(i) = p.dev / std::sqrt(static_cast<double>(p.n));
+    out_ns.mutable_at(i) = static_cast<long long>(p.n);
+  }
+  return py::make_tuple(out_taus, out_devs, out_errs, out_ns);
+}
+
+}  // namespace
+
+void register_deviation(py::module_& m) {
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  m.def("deviation", &deviation, py::arg("estimator"), py::arg("data"), py::arg("rate") = 1.0,
+        py::arg("data_type") = "phase", py::arg("taus") = py::none(), py::arg("threads") = 0u,
+        "Deviation by estimator name; returns (taus, devs, errs, ns) like AllanTools.");
+}
+
+}  // namespace imunoise::python
