@@ -1,0 +1,188 @@
+// imunoise dev: deviation curves with n, EDF and confidence bounds.
+#include <cmath>
+#include <limits>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "imunoise/confidence/fill_confidence.hpp"
+#include "imunoise/deviation.hpp"
+#include "imunoise/error.hpp"
+#include "imunoise/tau_grid.hpp"
+#include "input_options.hpp"
+#include "output.hpp"
+
+namespace imunoise::cli {
+namespace {
+
+struct DevOptionsCli {
+  InputOptions input;
+  OutputOptions output;
+  std::string estimators = "oadev";
+  std::string taus = "octave";
+  std::string factors;
+  double ci_level = 0.683;
+  std::optional<int> noise_type;
+  bool no_ci = false;
+  std::string format = "table";
+  unsigned threads = 0;
+};
+
+struct Curve {
+  Estimator estimator;
+  std::vector<DevPoint> points;  // in the output unit
+  std::string unit;
+};
+
+nlohmann::json json_number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+std::string format_json(const PhaseRecord& record, const std::vector<Curve>& curves) {
+  auto array = nlohmann::json::array();
+  for (const auto& curve : curves) {
+    nlohmann::json object{{"estimator", estimator_name(curve.estimator)},
+                          {"input", input_kind_name(record.kind)},
+                          {"rate_hz", record.rate_hz},
+                          {"n_samples", record.n_samples},
+                          {"unit", curve.unit}};
+    auto points = nlohmann::json::array();
+    for (const auto& p : curve.points) {
+      points.push_back({{"m", p.m}, {"tau_s", p.tau_s}, {"dev", json_number(p.dev)}, {"n", p.n},
+                        {"edf", json_number(p.edf)}, {"ci_low", json_number(p.ci_low)},
+                        {"ci_high", json_number(p.ci_high)},
+                        {"alpha", p.alpha == std::numeric_limits<int>::min()
+                                      ? nlohmann::json(nullptr) : nlohmann::json(p.alpha)}});
+    }
+    object["points"] = std::move(points);
+    if (record.timing) {
+      const auto& t = *record.timing;
+      object["timing"] = {{"rate_hz", t.rate_hz}, {"median_dt_s", t.median_dt_s},
+                          {"jitter_rel_std", t.jitter_rel_std}, {"jitter_rel_max", t.jitter_rel_max},
+                          {"gaps", t.gaps.size()}, {"missing_samples", t.missing_samples}};
+    }
+    array.push_back(std::move(object));
+  }
+  return (array.size() == 1 ? array[0] : array).dump(1) + "\n";
+}
+
+std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.6e}", v) : "nan"; }
+
+std::string format_csv(const std::vector<Curve>& curves) {
+  std::string out = "estimator,m,tau_s,dev,unit,n,edf,ci_low,ci_high,alpha\n";
+  for (const auto& curve : curves) {
+    for (const auto& p : curve.points) {
+      out += fmt::format("{},{},{:.9g},{:.10g},{},{},{:.6g},{:.10g},{:.10g},{}\n",
+                         estimator_name(curve.estimator), p.m, p.tau_s, p.dev, curve.unit, p.n,
+                         p.edf, p.ci_low, p.ci_high,
+                         p.alpha == std::numeric_limits<int>::min() ? std::string()
+                                                                     : std::to_string(p.alpha));
+    }
+  }
+  return out;
+}
+
+std::string format_table(const PhaseRecord& record, const std::vector<Curve>& curves, double level) {
+  std::string out = fmt::format("# {}: {} samples of {} at {:.9g} Hz ({:.6g} s)\n", record.source,
+                                record.n_samples, input_kind_name(record.kind), record.rate_hz,
+                                static_cast<double>(record.n_samples) / record.rate_hz);
+  for (const auto& curve : curves) {
+    out += fmt::format("\n{} [{}], {:.1f}% confidence\n", estimator_name(curve.estimator),
+                       curve.unit, 100 * level);
+    out += fmt::format("{:>10} {:>13} {:>13} {:>11} {:>11} {:>13} {:>13} {:>5}\n", "m", "tau [s]",
+                       "dev", "n", "edf", "ci_low", "ci_high", "alpha");
+    for (const auto& p : curve.points) {
+      out += fmt::format("{:>10} {:>13.6g} {:>13} {:>11} {:>11.4g} {:>13} {:>13} {:>5}\n", p.m,
+                         p.tau_s, cell(p.dev), p.n, p.edf, cell(p.ci_low), cell(p.ci_high),
+                         p.alpha == std::numeric_limits<int>::min() ? std::string("-")
+                                                                     : std::to_string(p.alpha));
+    }
+  }
+  return out;
+}
+
+void run_dev(const DevOptionsCli& options) {
+  if (options.format != "table" && options.format != "json" && options.format != "csv") {
+    throw InputError("unknown --format '" + options.format + "'; use table, json or csv");
+  }
+  const auto estimators = parse_estimator_list(options.estimators);
+  const TauGrid grid = options.factors.empty() ? parse_tau_grid(options.taus)
+                                               : parse_factor_list(options.factors);
+  if (!options.no_ci && !(options.ci_level > 0.0 && options.ci_level < 1.0)) {
+    throw InputError("--ci must be a confidence level between 0 and 1 (e.g. 0.683 or 0.95), got " +
+                     fmt::format("{}", options.ci_level));
+  }
+  const PhaseRecord record = load_phase(options.input);
+  const double tau0_s = 1.0 / record.rate_hz;
+
+  std::vector<Curve> curves;
+  for (const Estimator estimator : estimators) {
+    const std::size_t max_m = max_averaging_factor(estimator, record.phase_si.size());
+    if (max_m == 0) {
+      throw InputError(record.source + ": " + std::to_string(record.n_samples) +
+                       " samples are too few for " + std::string(estimator_name(estimator)) +
+                       " (it needs at least " + (estimator == Estimator::hdev || estimator == Estimator::ohdev ? "3" : "2") +
+                       " rate samples); record longer");
+    }
+    const auto factors = averaging_factors(grid, record.rate_hz, max_m);
+    auto points = compute_deviation(estimator, record.phase_si, tau0_s, factors, {options.threads});
+    if (!options.no_ci) {
+      fill_confidence(points, estimator, record.phase_si, options.ci_level, options.noise_type);
+    }
+    // SI inside, the input's unit at the edge: tdev is an angle, the others a rate.
+    const bool integrated = estimator == Estimator::tdev;
+    const double to_si = integrated ? integral_unit(record.rate_unit).to_si : record.rate_unit.to_si;
+    for (auto& p : points) {
+      p.dev /= to_si;
+      p.ci_low /= to_si;
+      p.ci_high /= to_si;
+    }
+    curves.push_back({estimator, std::move(points), unit_label(record, integrated)});
+  }
+  std::string text;
+  if (options.format == "json") {
+    text = format_json(record, curves);
+  } else if (options.format == "csv") {
+    text = format_csv(curves);
+  } else {
+    text = format_table(record, curves, options.ci_level);
+  }
+  write_output(options.output, text);
+  if (record.timing && !record.timing->gaps.empty()) {
+    fmt::print(stderr, "imunoise: warning: {} gaps ({} missing samples) were treated as equally "
+                       "spaced (--allow-gaps)\n", record.timing->gaps.size(),
+               record.timing->missing_samples);
+  }
+}
+
+}  // namespace
+
+void setup_dev(CLI::App& app) {
+  auto options = std::make_shared<DevOptionsCli>();
+  auto* command = app.add_subcommand("dev", "deviation curves (Allan family) with n, EDF and "
+                                            "confidence bounds");
+  add_input_options(*command, options->input);
+  command->add_option("--estimator", options->estimators,
+                      "estimator(s): adev oadev mdev tdev hdev ohdev, comma-separated, or all")
+      ->capture_default_str();
+  command->add_option("--taus", options->taus,
+                      "tau grid: octave, decade, all, perdecade:K, or taus in s (0.1,1,10)")
+      ->capture_default_str();
+  command->add_option("--af", options->factors, "explicit averaging factors (1,10,100)");
+  command->add_option("--ci", options->ci_level, "confidence level of the bounds")
+      ->capture_default_str();
+  command->add_flag("--no-ci", options->no_ci, "skip noise identification and confidence bounds");
+  command->add_option("--noise-type", options->noise_type,
+                      "force the power-law noise type alpha (-4..2) instead of identifying it");
+  command->add_option("--format", options->format, "table, json or csv")->capture_default_str();
+  command->add_option("--threads", options->threads, "worker threads (0: all cores)");
+  command->add_option("-o,--output", options->output.path, "write to FILE instead of standard output");
+  command->add_flag("--force", options->output.force, "replace an existing output file");
+  command->callback([options] { run_dev(*options); });
+}
+
+}  // namespace imunoise::cli

@@ -1,0 +1,52 @@
+#pragma once
+// The input options shared by every command that reads a sensor record (dev, fit, analyze),
+// and the one function that turns them into angle (phase) samples in SI units.
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "imunoise/io/timestamps.hpp"
+#include "imunoise/series.hpp"
+#include "imunoise/units.hpp"
+
+namespace imunoise::cli {
+
+struct InputOptions {
+  std::string file;              ///< path, or "-" for standard input
+  std::string column;            ///< --column N|NAME (0-based index or header name)
+  std::string time_column;       ///< --time-column N|NAME
+  std::string binary;            ///< --binary f32|f64|i16|i32[:le|be]
+  std::size_t channels = 1;      ///< --channels (binary)
+  double rate_hz = 0.0;          ///< --rate (0: derive from the time column)
+  std::string input = "rate";    ///< --input rate|angle (freq|phase)
+  std::string units;             ///< --units of the values in the file (after scaling)
+  double scale = 1.0;            ///< --scale: value = raw * scale
+  double sensitivity = 0.0;      ///< --sensitivity: value = raw / sensitivity (0: unset)
+  bool allow_gaps = false;       ///< --allow-gaps
+};
+
+void add_input_options(CLI::App& command, InputOptions& options);
+
+/// A record ready for the estimators.
+struct PhaseRecord {
+  std::string source;            ///< file name as given ("-" is "standard input")
+  InputKind kind = InputKind::rate;
+  double rate_hz = 0.0;
+  std::size_t n_samples = 0;     ///< samples in the file (rate samples, or angle samples)
+  std::vector<double> phase_si;  ///< angle samples in SI (rad, m/s, s or unit*s)
+  Unit rate_unit;                ///< unit deviations are reported in
+  bool unit_given = false;       ///< false when --units was not given (label "input unit")
+  std::optional<io::TimingReport> timing;
+};
+
+/// Reads, checks and integrates the input. Raw binary files are streamed in chunks straight
+/// into the phase array, so peak memory is one double per sample plus a 1 MB buffer.
+/// Throws InputError with the file, line or sample and the fix.
+PhaseRecord load_phase(const InputOptions& options);
+
+/// Label for a unit in output: its name, or "input unit" (with suffix) when none was given.
+std::string unit_label(const PhaseRecord& record, bool integrated = false);
+
+}  // namespace imunoise::cli
