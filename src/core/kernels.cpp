@@ -7,6 +7,10 @@
 #define IMUNOISE_CLONES
 #endif
 
+// The 32-byte vector type only crosses always-inline helpers, never a real call boundary, so
+// GCC's note that its ABI would differ without AVX does not apply.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
 namespace imunoise::detail {
 namespace {
 

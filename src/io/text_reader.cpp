@@ -1,0 +1,628 @@
+#include "imunoise/io/text_reader.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <istream>
+#include <memory>
+#include <system_error>
+
+#include <fast_float/fast_float.h>
+
+#include "imunoise/error.hpp"
+#include "imunoise/io/timestamps.hpp"
+
+namespace imunoise::io {
+namespace {
+
+constexpr std::size_t excerpt_max_chars = 40;
+constexpr std::size_t listed_columns_max = 16;
+
+bool is_blank(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
+}
+
+std::string_view trim(std::string_view text) {
+  std::size_t first = 0;
+  std::size_t last = text.size();
+  while (first < last && is_blank(text[first])) ++first;
+  while (last > first && is_blank(text[last - 1])) --last;
+  return text.substr(first, last - first);
+}
+
+// Removes one pair of surrounding double quotes (spreadsheets quote header names).
+std::string_view unquote(std::string_view field) {
+  if (field.size() >= 2 && field.front() == '"' && field.back() == '"') {
+    return trim(field.substr(1, field.size() - 2));
+  }
+  return field;
+}
+
+// The offending text for a message: quoted, at most 40 characters, bytes that are not
+// printable ASCII shown as \xNN so that binary junk cannot garble a terminal.
+std::string escaped(std::string_view text, char quote) {
+  std::string out(1, quote);
+  std::size_t shown = 0;
+  for (char c : text) {
+    if (shown == excerpt_max_chars) {
+      out += "...";
+      break;
+    }
+    const auto byte = static_cast<unsigned char>(c);
+    if (byte >= 0x20 && byte < 0x7f) {
+      out += c;
+    } else {
+      static constexpr char hex[] = "0123456789abcdef";
+      out += "\\x";
+      out += hex[byte >> 4];
+      out += hex[byte & 0xf];
+    }
+    ++shown;
+  }
+  return out + quote;
+}
+
+std::string excerpt(std::string_view text) { return escaped(text, '\''); }
+std::string quoted_name(std::string_view name) { return escaped(name, '"'); }
+
+// Whether a text with blanks inside is a name ("gyro x") rather than numbers aligned by spaces.
+bool is_spaced_name(std::string_view field) {
+  std::size_t start = 0;
+  while (start < field.size()) {
+    if (is_blank(field[start])) {
+      ++start;
+      continue;
+    }
+    std::size_t end = start;
+    while (end < field.size() && !is_blank(field[end])) ++end;
+    if (!parse_number(field.substr(start, end - start))) return true;
+    start = end;
+  }
+  return false;
+}
+
+// A line with tabs is tab-separated when tabs are the only blanks in it, or when some
+// tab-separated field is a name with a blank inside ("gyro x"); otherwise the tabs are
+// alignment mixed with spaces, and runs of blanks separate the fields.
+bool tabs_separate_fields(std::string_view line) {
+  if (line.find(' ') == std::string_view::npos) return true;
+  std::size_t start = 0;
+  while (start <= line.size()) {
+    const std::size_t end = std::min(line.find('\t', start), line.size());
+    const std::string_view field = trim(line.substr(start, end - start));
+    if (field.find(' ') != std::string_view::npos && is_spaced_name(field)) return true;
+    start = end + 1;
+  }
+  return false;
+}
+
+// Priority tab > ';' > ',' > spaces: a tab or ';' is never part of a number, whereas ',' can be
+// a decimal comma in files that then use ';' between fields.
+Separator detect_separator(std::string_view line) {
+  if (line.find('\t') != std::string_view::npos) {
+    return tabs_separate_fields(line) ? Separator::tab : Separator::whitespace;
+  }
+  if (line.find(';') != std::string_view::npos) return Separator::semicolon;
+  if (line.find(',') != std::string_view::npos) return Separator::comma;
+  return Separator::whitespace;
+}
+
+char separator_char(Separator separator) {
+  switch (separator) {
+    case Separator::comma: return ',';
+    case Separator::tab: return '\t';
+    case Separator::semicolon: return ';';
+    case Separator::whitespace: return ' ';
+  }
+  return ' ';
+}
+
+// Walks the fields of one trimmed, non-empty line. Fields come out trimmed and unquoted.
+class FieldCursor {
+ public:
+  FieldCursor(std::string_view line, Separator separator)
+      : line_(line), separator_(separator), sep_char_(separator_char(separator)) {}
+
+  bool next(std::string_view& field) {
+    if (done_) return false;
+    if (separator_ == Separator::whitespace) return next_word(field);
+    const std::size_t end = line_.find(sep_char_, pos_);
+    if (end == std::string_view::npos) {
+      field = unquote(trim(line_.substr(pos_)));
+      done_ = true;
+    } else {
+      field = unquote(trim(line_.substr(pos_, end - pos_)));
+      pos_ = end + 1;
+    }
+    return true;
+  }
+
+  /// Number of fields from the current position on (for messages about ragged rows).
+  std::size_t count_rest() {
+    std::size_t n = 0;
+    std::string_view field;
+    while (next(field)) ++n;
+    return n;
+  }
+
+ private:
+  bool next_word(std::string_view& field) {
+    while (pos_ < line_.size() && is_blank(line_[pos_])) ++pos_;
+    if (pos_ == line_.size()) {
+      done_ = true;
+      return false;
+    }
+    std::size_t end = pos_;
+    while (end < line_.size() && !is_blank(line_[end])) ++end;
+    field = unquote(line_.substr(pos_, end - pos_));
+    pos_ = end;
+    return true;
+  }
+
+  std::string_view line_;
+  Separator separator_;
+  char sep_char_;
+  std::size_t pos_ = 0;
+  bool done_ = false;
+};
+
+std::string non_finite_reason(std::string_view field) {
+  // fast_float turns both "nan"/"inf" literals and overflowing decimals such as 1e999 into
+  // non-finite values; the letters tell which one the user wrote.
+  const bool literal = field.find_first_of("nNiI") != std::string_view::npos;
+  return literal ? "is NaN or Inf" : "is outside the range of a double (magnitude > 1.8e308)";
+}
+
+enum class LineEnd { unknown, lf, cr };
+
+// Splits a byte stream into lines (LF, CRLF or CR endings; the kind is decided by the first line
+// end) and hands them to `on_line` without the terminator. Blocks arrive through process().
+template <class OnLine>
+class LineSplitter {
+ public:
+  explicit LineSplitter(OnLine& on_line) : on_line_(on_line) {}
+
+  /// Hands out every complete line of data[0, size) and, at end of input, the unterminated
+  /// last one. Returns the number of bytes consumed; the rest must be passed again, followed
+  /// by more input.
+  std::size_t process(const char* data, std::size_t size, bool at_end) {
+    std::size_t pos = 0;
+    while (pos < size) {
+      if (line_end_ == LineEnd::unknown && !decide_line_end(data, pos, size, at_end)) break;
+      const char terminator = line_end_ == LineEnd::cr ? '\r' : '\n';
+      const void* hit = std::memchr(data + pos, terminator, size - pos);
+      if (hit == nullptr) break;
+      const auto end = static_cast<std::size_t>(static_cast<const char*>(hit) - data);
+      emit(std::string_view(data + pos, end - pos));
+      pos = end + 1;
+    }
+    if (at_end && pos < size) {
+      emit(std::string_view(data + pos, size - pos));
+      pos = size;
+    }
+    return pos;
+  }
+
+ private:
+  // Looks at the first '\r' or '\n' from pos. Returns false when that needs more input.
+  bool decide_line_end(const char* data, std::size_t pos, std::size_t size, bool at_end) {
+    const std::string_view rest(data + pos, size - pos);
+    const std::size_t i = rest.find_first_of("\r\n");
+    if (i == std::string_view::npos) return at_end;  // no line end yet: need more, or one line
+    if (rest[i] == '\n') {
+      line_end_ = LineEnd::lf;
+    } else if (i + 1 < rest.size()) {
+      line_end_ = rest[i + 1] == '\n' ? LineEnd::lf : LineEnd::cr;
+    } else if (at_end) {
+      line_end_ = LineEnd::lf;  // a final lone '\r': trimmed off as trailing blank
+    } else {
+      return false;
+    }
+    return true;
+  }
+
+  void emit(std::string_view line) {
+    if (line_end_ != LineEnd::cr && !line.empty() && line.back() == '\r') line.remove_suffix(1);
+    on_line_(line);
+  }
+
+  OnLine& on_line_;
+  LineEnd line_end_ = LineEnd::unknown;
+};
+
+// Feeds `read(dst, capacity) -> bytes` (0 at end) through a LineSplitter in blocks.
+template <class Read, class OnLine>
+void split_blocks(Read&& read, std::size_t block_bytes, OnLine& on_line) {
+  LineSplitter<OnLine> splitter(on_line);
+  std::vector<char> buffer(std::max<std::size_t>(block_bytes, 1));
+  std::size_t have = 0;
+  bool at_end = false;
+  while (!at_end) {
+    if (have == buffer.size()) buffer.resize(buffer.size() * 2);  // one line longer than a block
+    const std::size_t got = read(buffer.data() + have, buffer.size() - have);
+    at_end = got == 0;
+    have += got;
+    const std::size_t used = splitter.process(buffer.data(), have, at_end);
+    std::memmove(buffer.data(), buffer.data() + used, have - used);
+    have -= used;
+  }
+}
+
+// The state machine over lines: first content line (header or data), then data rows.
+class TextParser {
+ public:
+  TextParser(std::string_view source, const TextReadOptions& options) : options_(options) {
+    out_.source = std::string(source);
+  }
+
+  void operator()(std::string_view line) {
+    ++line_number_;
+    if (line_number_ == 1) line = strip_byte_order_mark(line);
+    if (const auto hash = line.find('#'); hash != std::string_view::npos) line = line.substr(0, hash);
+    const std::string_view content = trim(line);
+    if (content.empty()) return;
+    if (out_.column_count == 0) {
+      first_content_line(content);
+    } else {
+      data_row(content);
+    }
+  }
+
+  TextColumns finish() {
+    if (out_.column_count == 0) {
+      if (line_number_ == 0) fail(0, "empty file (no bytes)", "check that the right file was given");
+      fail(0, "no data lines (only comments and blank lines)",
+           "give a file with one sample per line; '#' starts a comment");
+    }
+    if (out_.values.empty()) {
+      fail(out_.header_line, "header line but no data rows after it",
+           "add the data rows below the header");
+    }
+    if (out_.time_column) finish_time();
+    return std::move(out_);
+  }
+
+ private:
+  std::string_view strip_byte_order_mark(std::string_view line) const {
+    if (line.substr(0, 3) == "\xEF\xBB\xBF") return line.substr(3);
+    if (line.substr(0, 2) == "\xFF\xFE" || line.substr(0, 2) == "\xFE\xFF") {
+      fail(1, "the file is UTF-16 encoded", "save it as UTF-8 or ASCII text");
+    }
+    return line;
+  }
+
+  // A line is a header when none of its fields is a number; otherwise it is the first data row.
+  void first_content_line(std::string_view content) {
+    out_.separator = detect_separator(content);
+    std::vector<std::string> fields;
+    bool any_number = false;
+    FieldCursor cursor(content, out_.separator);
+    std::string_view field;
+    while (cursor.next(field)) {
+      any_number = any_number || parse_number(field).has_value();
+      fields.emplace_back(field);
+    }
+    out_.column_count = fields.size();
+    if (!any_number) {
+      out_.header = std::move(fields);
+      out_.header_line = line_number_;
+      resolve_columns();
+      return;
+    }
+    resolve_columns();
+    data_row(content);
+  }
+
+  void data_row(std::string_view content) {
+    if (out_.first_data_line == 0) out_.first_data_line = line_number_;
+    FieldCursor cursor(content, out_.separator);
+    std::string_view field;
+    std::size_t column = 0;
+    while (cursor.next(field)) {
+      if (column == out_.column_count) ragged(column + 1 + cursor.count_rest());
+      if (column == out_.value_column) {
+        out_.values.push_back(value_cell(field, column));
+      } else if (out_.time_column && column == *out_.time_column) {
+        time_cell(field, column);
+      } else if (!parse_number(field)) {
+        not_a_number(field, column);
+      }
+      ++column;
+    }
+    if (column != out_.column_count) ragged(column);
+    out_.lines.add(rows_, line_number_);
+    ++rows_;
+  }
+
+  double value_cell(std::string_view field, std::size_t column) const {
+    const std::optional<double> value = parse_number(field);
+    if (!value) not_a_number(field, column);
+    if (!std::isfinite(*value)) not_finite(field, column, non_finite_reason(field));
+    return *value;
+  }
+
+  void time_cell(std::string_view field, std::size_t column) {
+    const std::optional<SplitTime> time = parse_split_time(field);
+    if (!time) not_a_number(field, column);
+    if (!is_finite(*time)) not_finite(field, column, non_finite_reason(field));
+    if (times_.empty()) out_.time_origin = std::string(field);
+    times_.push_back(*time);
+  }
+
+  void finish_time() {
+    if (options_.time_unit) {
+      if (options_.time_unit->quantity != Quantity::time) {
+        fail(0, "time unit '" + options_.time_unit->name + "' is not a unit of time",
+             "give the time column's unit as s, ms, us or ns");
+      }
+      out_.time_unit = *options_.time_unit;
+    } else {
+      out_.time_unit = parse_unit(looks_like_nanoseconds(times_) ? "ns" : "s");
+    }
+    out_.time_s = relative_seconds(times_, out_.time_unit.to_si);
+    // Each time is finite, but two near the ends of the double range differ by infinity.
+    for (std::size_t i = 0; i < out_.time_s.size(); ++i) {
+      if (!std::isfinite(out_.time_s[i])) {
+        fail(out_.line_of(i),
+             "sample " + std::to_string(i) + ", " + column_label(*out_.time_column) +
+                 ": the time since the first sample overflows a double",
+             "check the time column (--time-column) and its unit");
+      }
+    }
+  }
+
+  // --- column selection ----------------------------------------------------------------------
+
+  void resolve_columns() {
+    const std::size_t line = line_number_;
+    std::optional<std::size_t> time;
+    if (options_.time_column) time = resolve(*options_.time_column, "--time-column", line);
+    std::size_t value = 0;
+    if (options_.column) {
+      value = resolve(*options_.column, "--column", line);
+    } else if (out_.column_count == 1 && !time) {
+      value = 0;
+    } else if (out_.column_count == 2 && time) {
+      value = 1 - *time;
+    } else if (out_.column_count == 1) {
+      fail(line, "the only column is the time column, so no column is left for the values",
+           "give a file with a value column, or drop --time-column");
+    } else {
+      fail(line, "the rows have " + column_list() + ", and no value column was chosen",
+           "pass --column with a 0-based index or a header name");
+    }
+    if (time && *time == value) {
+      fail(line, "the time column and the value column are both column " + std::to_string(value),
+           "choose different columns with --column and --time-column");
+    }
+    out_.value_column = value;
+    out_.time_column = time;
+  }
+
+  std::size_t resolve(const ColumnSelector& selector, std::string_view option,
+                      std::size_t line) const {
+    if (const auto* index = std::get_if<std::size_t>(&selector)) {
+      if (*index < out_.column_count) return *index;
+      fail(line,
+           "column " + std::to_string(*index) + " (" + std::string(option) +
+               ") does not exist: the rows have " + column_list(),
+           "pass " + std::string(option) + " with a 0-based index below " +
+               std::to_string(out_.column_count) + " or a header name");
+    }
+    const std::string& name = std::get<std::string>(selector);
+    if (out_.header.empty()) {
+      fail(line,
+           "column " + quoted_name(name) + " (" + std::string(option) +
+               ") cannot be found: the file has no header line; the rows have " + column_list(),
+           "pass " + std::string(option) + " with a 0-based index, or add a header line");
+    }
+    std::vector<std::size_t> matches;
+    for (std::size_t i = 0; i < out_.header.size(); ++i) {
+      if (out_.header[i] == name) matches.push_back(i);
+    }
+    if (matches.size() == 1) return matches.front();
+    const std::string problem = matches.empty() ? " does not exist" : " names more than one column";
+    fail(line,
+         "column " + quoted_name(name) + " (" + std::string(option) + ")" + problem +
+             "; the header has " + column_list(),
+         "pass " + std::string(option) + " with a 0-based index or a unique header name");
+  }
+
+  // "3 columns: 0 "t", 1 "gx", 2 "gy"" or "0..2 (no header line)".
+  std::string column_list() const {
+    const std::size_t n = out_.column_count;
+    if (out_.header.empty()) {
+      return std::to_string(n) + (n == 1 ? " column" : " columns") + ", 0.." +
+             std::to_string(n - 1) + " (no header line)";
+    }
+    std::string text = std::to_string(n) + (n == 1 ? " column:" : " columns:");
+    for (std::size_t i = 0; i < n && i < listed_columns_max; ++i) {
+      text += (i == 0 ? " " : ", ") + std::to_string(i) + " " + quoted_name(out_.header[i]);
+    }
+    if (n > listed_columns_max) text += ", ...";
+    return text;
+  }
+
+  std::string column_label(std::size_t column) const {
+    std::string label = "column " + std::to_string(column);
+    if (column < out_.header.size()) label += " " + quoted_name(out_.header[column]);
+    return label;
+  }
+
+  // --- errors --------------------------------------------------------------------------------
+
+  [[noreturn]] void fail(std::size_t line, const std::string& what, const std::string& fix) const {
+    std::string where = out_.source + ":";
+    if (line != 0) where += std::to_string(line) + ":";
+    throw InputError(where + " " + what + "; fix: " + fix);
+  }
+
+  [[noreturn]] void not_a_number(std::string_view field, std::size_t column) const {
+    if (field.empty()) {
+      fail(line_number_, column_label(column) + ": empty cell",
+           "fill in the cell or comment the row out with '#'");
+    }
+    std::string fix = "correct the cell or comment the row out with '#'; cells must be numbers "
+                      "written with '.' as the decimal point";
+    if (field.find(',') != std::string_view::npos) fix += " (not ',')";
+    if (line_number_ == out_.first_data_line) {
+      fix += out_.header.empty()
+                 ? "; the first line is a header only when none of its fields is a number"
+                 : "; only one header line is allowed";
+    }
+    fail(line_number_, column_label(column) + ": " + excerpt(field) + " is not a number", fix);
+  }
+
+  [[noreturn]] void not_finite(std::string_view field, std::size_t column,
+                               const std::string& reason) const {
+    fail(line_number_,
+         "sample " + std::to_string(rows_) + ", " + column_label(column) + ": " + excerpt(field) + " " + reason,
+         "repair or remove the row; imunoise never skips or fills in samples");
+  }
+
+  [[noreturn]] void ragged(std::size_t fields) const {
+    const std::string reference = out_.header_line != 0
+                                      ? "the header (line " + std::to_string(out_.header_line) + ")"
+                                      : "the first data row (line " +
+                                            std::to_string(out_.first_data_line) + ")";
+    fail(line_number_,
+         std::to_string(fields) + (fields == 1 ? " field" : " fields") + ", but " + reference +
+             " has " + std::to_string(out_.column_count) + " (fields separated by " +
+             std::string(separator_name(out_.separator)) + ", detected on line " +
+             std::to_string(out_.header_line != 0 ? out_.header_line : out_.first_data_line) + ")",
+         "give every row the same number of fields, or comment the row out with '#'");
+  }
+
+  TextReadOptions options_;
+  TextColumns out_;
+  std::size_t line_number_ = 0;
+  std::size_t rows_ = 0;  // data rows completed so far = index of the row being read
+  std::vector<SplitTime> times_;
+};
+
+struct FileCloser {
+  void operator()(std::FILE* file) const noexcept { std::fclose(file); }
+};
+
+}  // namespace
+
+// --- public helpers ------------------------------------------------------------------------------
+
+std::optional<double> parse_number(std::string_view text) {
+  const char* first = text.data();
+  const char* last = first + text.size();
+  // fast_float follows std::from_chars, which rejects a leading '+'; files often have one.
+  if (last - first >= 2 && *first == '+' &&
+      ((first[1] >= '0' && first[1] <= '9') || first[1] == '.')) {
+    ++first;
+  }
+  double value = 0.0;
+  const auto result = fast_float::from_chars(first, last, value);
+  if (result.ec != std::errc() || result.ptr != last || first == last) return std::nullopt;
+  return value;
+}
+
+ColumnSelector parse_column_selector(std::string_view text) {
+  const std::string_view name = trim(text);
+  if (name.empty()) {
+    throw InputError("empty column selector; fix: pass --column with a 0-based index or a "
+                     "header name");
+  }
+  if (name.find_first_not_of("0123456789") != std::string_view::npos) return std::string(name);
+  std::size_t index = 0;
+  const auto result = std::from_chars(name.data(), name.data() + name.size(), index);
+  if (result.ec != std::errc()) {
+    throw InputError("column index " + excerpt(name) + " is too large; fix: pass a 0-based "
+                     "column index or a header name");
+  }
+  return index;
+}
+
+std::string describe_column_selector(const ColumnSelector& selector) {
+  if (const auto* index = std::get_if<std::size_t>(&selector)) {
+    return "column " + std::to_string(*index);
+  }
+  return "column " + quoted_name(std::get<std::string>(selector));
+}
+
+std::string_view separator_name(Separator separator) {
+  switch (separator) {
+    case Separator::comma: return "comma";
+    case Separator::tab: return "tab";
+    case Separator::semicolon: return "semicolon";
+    case Separator::whitespace: return "whitespace";
+  }
+  return "unknown";
+}
+
+void LineMap::add(std::size_t sample, std::size_t line) {
+  if (!runs_.empty()) {
+    const Run& last = runs_.back();
+    if (sample >= last.first_sample && line - last.first_line == sample - last.first_sample) return;
+  }
+  runs_.push_back({sample, line});
+}
+
+std::size_t LineMap::line_of(std::size_t sample) const {
+  if (runs_.empty()) return 0;
+  auto it = std::upper_bound(runs_.begin(), runs_.end(), sample,
+                             [](std::size_t s, const Run& run) { return s < run.first_sample; });
+  if (it == runs_.begin()) return 0;
+  --it;
+  return it->first_line + (sample - it->first_sample);
+}
+
+// --- readers -------------------------------------------------------------------------------------
+
+TextColumns read_text_buffer(std::string_view text, std::string_view source,
+                             const TextReadOptions& options) {
+  TextParser parser(source, options);
+  LineSplitter<TextParser> splitter(parser);
+  splitter.process(text.data(), text.size(), true);
+  return parser.finish();
+}
+
+TextColumns read_text_stream(std::istream& in, std::string_view source,
+                             const TextReadOptions& options) {
+  TextParser parser(source, options);
+  auto read = [&](char* destination, std::size_t capacity) -> std::size_t {
+    in.read(destination, static_cast<std::streamsize>(capacity));
+    if (in.bad()) {
+      throw InputError(std::string(source) + ": read error; fix: check the input stream");
+    }
+    return static_cast<std::size_t>(in.gcount());
+  };
+  split_blocks(read, options.block_bytes, parser);
+  return parser.finish();
+}
+
+TextColumns read_text_file(const std::filesystem::path& path, const TextReadOptions& options) {
+  const std::string source = path.string();
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    throw InputError(source + ": is a directory; fix: give the path of a text file");
+  }
+  std::unique_ptr<std::FILE, FileCloser> file(std::fopen(source.c_str(), "rb"));
+  if (!file) {
+    throw InputError(source + ": cannot open (" + std::strerror(errno) +
+                     "); fix: check the path and the permissions");
+  }
+  // Blocks go straight into our buffer; stdio's own buffer would only add a copy.
+  std::setvbuf(file.get(), nullptr, _IONBF, 0);
+  TextParser parser(source, options);
+  auto read = [&](char* destination, std::size_t capacity) -> std::size_t {
+    const std::size_t got = std::fread(destination, 1, capacity, file.get());
+    if (got == 0 && std::ferror(file.get())) {
+      throw InputError(source + ": read error (" + std::strerror(errno) +
+                       "); fix: check the file and the disk");
+    }
+    return got;
+  };
+  split_blocks(read, options.block_bytes, parser);
+  return parser.finish();
+}
+
+}  // namespace imunoise::io
