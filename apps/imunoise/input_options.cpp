@@ -1,6 +1,9 @@
 #include "input_options.hpp"
 
+#include <sys/mman.h>
+
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <iostream>
 
@@ -52,6 +55,16 @@ double value_scale(const InputOptions& options) {
     return options.scale / options.sensitivity;
   }
   return options.scale;
+}
+
+// Reserves room for the whole phase array and asks for transparent huge pages on it: a
+// 1e8-sample record is 800 MB, and with 4 KB pages its first touch costs 200 000 page faults.
+void reserve_phase(std::vector<double>& phase, std::size_t count) {
+  phase.reserve(count);
+  constexpr std::uintptr_t huge = std::uintptr_t{2} << 20;
+  const auto begin = (reinterpret_cast<std::uintptr_t>(phase.data()) + huge - 1) & ~(huge - 1);
+  const auto end = (reinterpret_cast<std::uintptr_t>(phase.data() + count)) & ~(huge - 1);
+  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
 }
 
 bool is_binary(const InputOptions& options) {
@@ -113,7 +126,7 @@ void load_binary(const InputOptions& options, PhaseRecord& record, double to_si)
   for (auto& v : chunk) v *= to_si;
   if (record.kind == InputKind::angle) {
     // Angle input: samples are used as they are.
-    if (const auto count = reader->record_count()) record.phase_si.reserve(*count);
+    if (const auto count = reader->record_count()) reserve_phase(record.phase_si, *count);
     record.phase_si.insert(record.phase_si.end(), chunk.begin(), chunk.end());
     chunk.resize(kOffsetSamples);
     while ((got = reader->read(chunk)) > 0) {
@@ -122,7 +135,7 @@ void load_binary(const InputOptions& options, PhaseRecord& record, double to_si)
     record.n_samples = record.phase_si.size();
     return;
   }
-  if (const auto count = reader->record_count()) record.phase_si.reserve(*count + 1);
+  if (const auto count = reader->record_count()) reserve_phase(record.phase_si, *count + 1);
   PhaseIntegrator integrator(1.0 / record.rate_hz, compensated_mean(chunk));
   std::size_t n = chunk.size();
   integrator.push(chunk, record.phase_si);
