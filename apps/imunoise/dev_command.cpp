@@ -90,6 +90,13 @@ std::string format_table(const PhaseRecord& record, const std::vector<Curve>& cu
   std::string out = fmt::format("# {}: {} samples of {} at {:.9g} Hz ({:.6g} s)\n", record.source,
                                 record.n_samples, input_kind_name(record.kind), record.rate_hz,
                                 static_cast<double>(record.n_samples) / record.rate_hz);
+  if (record.timing) {
+    const auto& t = *record.timing;
+    out += fmt::format("# time column: rate {:.9g} Hz from the median interval {:.6g} s; jitter "
+                       "{:.3g}% rms, {:.3g}% max of the interval; {} gaps ({} missing samples)\n",
+                       t.rate_hz, t.median_dt_s, 100 * t.jitter_rel_std, 100 * t.jitter_rel_max,
+                       t.gaps.size(), t.missing_samples);
+  }
   for (const auto& curve : curves) {
     out += fmt::format("\n{} [{}], {:.1f}% confidence\n", estimator_name(curve.estimator),
                        curve.unit, 100 * level);
