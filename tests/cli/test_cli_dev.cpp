@@ -247,3 +247,51 @@ TEST(CliDevBadInput, OutOfOrderAndGappyTimestamps) {
 
 }  // namespace
 }  // namespace imunoise
+
+namespace imunoise {
+namespace {
+
+// Stable32 1.60 on PHASE.DAT (the NBS14 1000-point set integrated to phase), oadev with 68.3%
+// bounds: m = 1: 2.8515e-01 .. 2.9987e-01; m = 128 (n = 745): 2.3045e-02 .. 3.7027e-02.
+// Stable32 prints 5 digits, so agreement is checked to 1e-3 relative (its rounding is 2e-4).
+TEST(CliDevConfidence, ReproducesStable32OnPhaseDat) {
+  TempDir dir;
+  const auto file = dir.write("nbs14.txt", column_text(test::nbs14_1000_point_frequency()));
+  const auto r = run_cli({"dev", file, "--rate", "1", "--input", "freq", "--af", "1,128", "--format", "json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& p1 = j["points"][0];
+  const auto& p128 = j["points"][1];
+  EXPECT_NEAR(p1["dev"].get<double>() / 2.9223e-01, 1.0, 1e-3);
+  EXPECT_NEAR(p1["ci_low"].get<double>() / 2.8515e-01, 1.0, 1e-3);
+  EXPECT_NEAR(p1["ci_high"].get<double>() / 2.9987e-01, 1.0, 1e-3);
+  EXPECT_EQ(p128["n"], 745);
+  EXPECT_NEAR(p128["dev"].get<double>() / 2.7674e-02, 1.0, 1e-3);
+  EXPECT_NEAR(p128["ci_low"].get<double>() / 2.3045e-02, 1.0, 1e-3);
+  EXPECT_NEAR(p128["ci_high"].get<double>() / 3.7027e-02, 1.0, 1e-3);
+  EXPECT_EQ(p1["alpha"], 0);  // white frequency noise (uniform deviates)
+  EXPECT_GT(p1["edf"].get<double>(), 0.0);
+}
+
+TEST(CliDevConfidence, LevelAndForcedNoiseType) {
+  TempDir dir;
+  const auto file = dir.write("nbs14.txt", column_text(test::nbs14_1000_point_frequency()));
+  auto width = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args{"dev", file, "--rate", "1", "--af", "16", "--format", "json"};
+    args.insert(args.end(), extra.begin(), extra.end());
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const auto p = nlohmann::json::parse(r.out)["points"][0];
+    return std::pair{p["ci_high"].get<double>() - p["ci_low"].get<double>(), p["alpha"]};
+  };
+  const auto [w683, a683] = width({});
+  const auto [w95, a95] = width({"--ci", "0.95"});
+  EXPECT_GT(w95, w683);
+  const auto [w_forced, a_forced] = width({"--noise-type", "-2"});
+  EXPECT_EQ(a_forced, -2);
+  expect_input_error(run_cli({"dev", file, "--rate", "1", "--noise-type", "7"}), {"7"});
+  expect_input_error(run_cli({"dev", file, "--rate", "1", "--ci", "0"}), {"--ci"});
+}
+
+}  // namespace
+}  // namespace imunoise
