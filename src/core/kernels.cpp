@@ -31,38 +31,38 @@ __attribute__((always_inline)) inline double horizontal_sum(const Vec4 (&acc)[kU
   return (s[0] + s[1]) + (s[2] + s[3]);
 }
 
-// Sum of squares of a finite difference with coefficients c0..c3 (c3 = 0 for order 2).
+// Sum of squares of a finite difference of order 2 or 3. No lambdas or non-inlined helpers:
+// in a target_clones function every callee must be inlined, or a 32-byte vector would cross a
+// call between code built for different instruction sets (it does at -O0 otherwise).
 template <int Order>
-__attribute__((always_inline)) inline double sum_sq_difference(const double* x, std::size_t m, std::size_t count) {
+__attribute__((always_inline)) inline double sum_sq_difference(const double* x, std::size_t m,
+                                                                std::size_t count) {
   const double* x0 = x;
   const double* x1 = x + m;
   const double* x2 = x + 2 * m;
   const double* x3 = x + 3 * m;
-  auto term = [&](std::size_t k) {
-    if constexpr (Order == 2) {
-      return x2[k] - 2.0 * x1[k] + x0[k];
-    } else {
-      return x3[k] - 3.0 * x2[k] + 3.0 * x1[k] - x0[k];
-    }
-  };
-  auto vterm = [&](std::size_t k) {
-    if constexpr (Order == 2) {
-      return load(x2 + k) - 2.0 * load(x1 + k) + load(x0 + k);
-    } else {
-      return load(x3 + k) - 3.0 * load(x2 + k) + 3.0 * load(x1 + k) - load(x0 + k);
-    }
-  };
   Vec4 acc[kUnroll] = {};
   std::size_t k = 0;
   for (; k + kLanes * kUnroll <= count; k += kLanes * kUnroll) {
     for (std::size_t u = 0; u < kUnroll; ++u) {
-      const Vec4 d = vterm(k + u * kLanes);
+      const std::size_t i = k + u * kLanes;
+      Vec4 d;
+      if constexpr (Order == 2) {
+        d = load(x2 + i) - 2.0 * load(x1 + i) + load(x0 + i);
+      } else {
+        d = load(x3 + i) - 3.0 * load(x2 + i) + 3.0 * load(x1 + i) - load(x0 + i);
+      }
       acc[u] += d * d;
     }
   }
   double sum = horizontal_sum(acc);
   for (; k < count; ++k) {
-    const double d = term(k);
+    double d;
+    if constexpr (Order == 2) {
+      d = x2[k] - 2.0 * x1[k] + x0[k];
+    } else {
+      d = x3[k] - 3.0 * x2[k] + 3.0 * x1[k] - x0[k];
+    }
     sum += d * d;
   }
   return sum;

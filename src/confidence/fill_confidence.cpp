@@ -1,0 +1,95 @@
+#include "imunoise/confidence/fill_confidence.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <string>
+
+#include "imunoise/error.hpp"
+
+namespace imunoise {
+namespace {
+
+std::string domain_text(Estimator estimator) {
+  const auto v = difference_variance(estimator);
+  if (!v) return "no noise type";
+  return std::to_string(std::max(kMinNoiseAlpha, 2 - 2 * v->d)) + " .. 2";
+}
+
+}  // namespace
+
+std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Estimator estimator,
+                                             std::span<const double> phase,
+                                             const ConfidenceOptions& options) {
+  validate_confidence_level(options.level);
+  if (options.forced_alpha && !alpha_in_domain(estimator, *options.forced_alpha)) {
+    const int alpha = *options.forced_alpha;
+    throw InputError("noise type alpha = " + std::to_string(alpha) + " (" +
+                     std::string(noise_type_name(alpha)) + ") is outside the domain of " +
+                     std::string(estimator_name(estimator)) + ": it needs alpha in " +
+                     domain_text(estimator) +
+                     " (2 white PM, 1 flicker PM, 0 white FM, -1 flicker FM, -2 random-walk FM, "
+                     "-3 flicker-walk FM, -4 random-run FM)");
+  }
+
+  std::vector<PointConfidence> info(points.size());
+  std::vector<std::size_t> order(points.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return points[a].m < points[b].m; });
+
+  const std::size_t n_phase = phase.size();
+  std::optional<int> previous;
+  for (const std::size_t index : order) {
+    DevPoint& point = points[index];
+    PointConfidence& out = info[index];
+
+    if (options.forced_alpha) {
+      out.noise.alpha = *options.forced_alpha;
+      out.noise.method = NoiseIdMethod::forced;
+    } else if (point.m > 0) {
+      out.noise = try_identify_noise(phase, point.m, estimator);
+      if (!out.noise.identified() && previous) {
+        out.note = out.noise.message + "; using alpha = " + std::to_string(*previous) +
+                   " identified at a smaller tau";
+        out.noise.alpha = *previous;
+        out.noise.method = NoiseIdMethod::previous_tau;
+      }
+    }
+
+    if (out.noise.identified()) {
+      previous = out.noise.alpha;
+      point.alpha = out.noise.alpha;
+      out.edf = edf(estimator, out.noise.alpha, point.m, n_phase);
+      if (out.edf.method == EdfMethod::not_available) {
+        const std::string why = "no EDF for " + std::string(estimator_name(estimator)) +
+                                " at m = " + std::to_string(point.m) +
+                                " with alpha = " + std::to_string(out.noise.alpha) + " over " +
+                                std::to_string(n_phase) + " phase points";
+        out.note = out.note.empty() ? why : out.note + "; " + why;
+      }
+    } else {
+      const double rough = ieee952_edf(point.m, n_phase);
+      if (!std::isnan(rough)) out.edf = {rough, EdfMethod::ieee952_simple};
+      const std::string why = "noise type unknown, rough IEEE 952 EDF N/m - 1 used";
+      out.note = out.noise.message.empty() ? why : out.noise.message + "; " + why;
+    }
+
+    point.edf = out.edf.value;
+    const ConfidenceInterval ci = chi2_interval(point.dev, out.edf.value, options.level);
+    point.ci_low = ci.low;
+    point.ci_high = ci.high;
+  }
+  return info;
+}
+
+std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Estimator estimator,
+                                             std::span<const double> phase, double level,
+                                             std::optional<int> forced_alpha) {
+  ConfidenceOptions options;
+  options.level = level;
+  options.forced_alpha = forced_alpha;
+  return fill_confidence(points, estimator, phase, options);
+}
+
+}  // namespace imunoise
