@@ -26,9 +26,56 @@ int family_d(Estimator estimator) {
 
 int lowest_alpha(int d) { return std::max(kMinNoiseAlpha, 2 - 2 * d); }
 
-// Mean of the products of neighbours over the mean square, both about the mean.
-double lag1_of(const std::vector<double>& z) {
-  return lag1_autocorrelation(std::span<const double>(z.data(), z.size()));
+// Identification reads at most the first 2^20 decimated points: the lag-1 estimate's
+// standard error there is ~1/sqrt(2^20) = 1e-3, far inside the 1/4 decision margin, and a
+// record of 1e8 samples is neither copied nor read in full for every tau.
+constexpr std::size_t kMaxIdentificationPoints = std::size_t{1} << 20;
+
+// The d-th difference of the phase decimated by m, z_d[i] = sum_j (-1)^(d-j) C(d,j) x[(i+j)m],
+// formed on the fly (long double: exact for the small binomial weights) instead of stored.
+class DecimatedDifference {
+ public:
+  DecimatedDifference(std::span<const double> phase, std::size_t m, std::size_t points, int d)
+      : phase_(phase), m_(m), count_(points - static_cast<std::size_t>(d)) {
+    long double c = 1.0L;  // C(d, j) with alternating sign, highest index last
+    for (int j = 0; j <= d; ++j) {
+      weights_.push_back(((d - j) % 2 == 0 ? 1.0L : -1.0L) * c);
+      c = c * (d - j) / (j + 1);
+    }
+  }
+  [[nodiscard]] std::size_t size() const { return count_; }
+  [[nodiscard]] long double operator[](std::size_t i) const {
+    long double z = 0.0L;
+    for (std::size_t j = 0; j < weights_.size(); ++j) z += weights_[j] * phase_[(i + j) * m_];
+    return z;
+  }
+
+ private:
+  std::span<const double> phase_;
+  std::size_t m_;
+  std::size_t count_;
+  std::vector<long double> weights_;
+};
+
+// Lag-1 autocorrelation about the mean (two passes: mean, then centred sums).
+double lag1_of(const DecimatedDifference& z) {
+  const std::size_t n = z.size();
+  if (n < 3) return kNaN;
+  long double mean = 0.0L;
+  for (std::size_t i = 0; i < n; ++i) mean += z[i];
+  mean /= static_cast<long double>(n);
+  long double num = 0.0L;
+  long double den = 0.0L;
+  long double previous = z[0] - mean;
+  den += previous * previous;
+  for (std::size_t i = 1; i < n; ++i) {
+    const long double a = z[i] - mean;
+    den += a * a;
+    num += previous * a;
+    previous = a;
+  }
+  if (!(den > 0.0L) || !std::isfinite(static_cast<double>(den))) return kNaN;
+  return static_cast<double>(num / den);
 }
 
 // The lag-1 procedure on phase decimated by m: the differencing order d where it stopped and
@@ -41,12 +88,10 @@ struct Lag1Stage {
 Lag1Stage lag1_stage(std::span<const double> phase, std::size_t m, int d_max) {
   Lag1Stage stage;
   if (m == 0 || d_max < 0) return stage;
-  const std::size_t points = decimated_count(phase.size(), m);
+  const std::size_t points = std::min(decimated_count(phase.size(), m), kMaxIdentificationPoints);
   if (points < static_cast<std::size_t>(d_max) + 3) return stage;
-  std::vector<double> z(points);
-  for (std::size_t i = 0; i < points; ++i) z[i] = phase[i * m];
   for (int d = 0;; ++d) {
-    const double r1 = lag1_of(z);
+    const double r1 = lag1_of(DecimatedDifference(phase, m, points, d));
     if (std::isnan(r1)) return stage;
     const double delta = r1 / (1.0 + r1);
     if (delta < 0.25 || d >= d_max) {
@@ -54,8 +99,6 @@ Lag1Stage lag1_stage(std::span<const double> phase, std::size_t m, int d_max) {
       stage.d = d;
       return stage;
     }
-    for (std::size_t i = 0; i + 1 < z.size(); ++i) z[i] = z[i + 1] - z[i];
-    z.pop_back();
   }
 }
 
