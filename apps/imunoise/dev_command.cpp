@@ -26,7 +26,7 @@ struct DevOptionsCli {
   std::string taus = "octave";
   std::string factors;
   double ci_level = 0.683;
-  std::optional<int> noise_type;
+  std::string noise_type;
   bool no_ci = false;
   std::string format = "table";
   unsigned threads = 0;
@@ -36,6 +36,7 @@ struct Curve {
   Estimator estimator;
   std::vector<DevPoint> points;  // in the output unit
   std::string unit;
+  std::vector<PointConfidence> confidence;  // empty with --no-ci
 };
 
 nlohmann::json json_number(double v) {
@@ -51,12 +52,20 @@ std::string format_json(const PhaseRecord& record, const std::vector<Curve>& cur
                           {"n_samples", record.n_samples},
                           {"unit", curve.unit}};
     auto points = nlohmann::json::array();
-    for (const auto& p : curve.points) {
-      points.push_back({{"m", p.m}, {"tau_s", p.tau_s}, {"dev", json_number(p.dev)}, {"n", p.n},
-                        {"edf", json_number(p.edf)}, {"ci_low", json_number(p.ci_low)},
-                        {"ci_high", json_number(p.ci_high)},
-                        {"alpha", p.alpha == std::numeric_limits<int>::min()
-                                      ? nlohmann::json(nullptr) : nlohmann::json(p.alpha)}});
+    for (std::size_t i = 0; i < curve.points.size(); ++i) {
+      const auto& p = curve.points[i];
+      nlohmann::json point{{"m", p.m}, {"tau_s", p.tau_s}, {"dev", json_number(p.dev)}, {"n", p.n},
+                           {"edf", json_number(p.edf)}, {"ci_low", json_number(p.ci_low)},
+                           {"ci_high", json_number(p.ci_high)},
+                           {"alpha", p.alpha == std::numeric_limits<int>::min()
+                                         ? nlohmann::json(nullptr) : nlohmann::json(p.alpha)}};
+      if (i < curve.confidence.size()) {
+        const auto& c = curve.confidence[i];
+        point["alpha_method"] = noise_id_method_name(c.noise.method);
+        point["edf_method"] = edf_method_name(c.edf.method);
+        if (!c.note.empty()) point["note"] = c.note;
+      }
+      points.push_back(std::move(point));
     }
     object["points"] = std::move(points);
     if (record.timing) {
@@ -108,6 +117,11 @@ std::string format_table(const PhaseRecord& record, const std::vector<Curve>& cu
                          p.alpha == std::numeric_limits<int>::min() ? std::string("-")
                                                                      : std::to_string(p.alpha));
     }
+    for (std::size_t i = 0; i < curve.confidence.size(); ++i) {
+      if (!curve.confidence[i].note.empty()) {
+        out += fmt::format("# note (m = {}): {}\n", curve.points[i].m, curve.confidence[i].note);
+      }
+    }
   }
   return out;
 }
@@ -119,10 +133,9 @@ void run_dev(const DevOptionsCli& options) {
   const auto estimators = parse_estimator_list(options.estimators);
   const TauGrid grid = options.factors.empty() ? parse_tau_grid(options.taus)
                                                : parse_factor_list(options.factors);
-  if (!options.no_ci && !(options.ci_level > 0.0 && options.ci_level < 1.0)) {
-    throw InputError("--ci must be a confidence level between 0 and 1 (e.g. 0.683 or 0.95), got " +
-                     fmt::format("{}", options.ci_level));
-  }
+  if (!options.no_ci) validate_confidence_level(options.ci_level, "--ci");
+  const std::optional<int> forced_alpha =
+      options.noise_type.empty() ? std::nullopt : std::optional<int>(parse_noise_type(options.noise_type));
   const PhaseRecord record = load_phase(options.input);
   const double tau0_s = 1.0 / record.rate_hz;
 
@@ -137,8 +150,9 @@ void run_dev(const DevOptionsCli& options) {
     }
     const auto factors = averaging_factors(grid, record.rate_hz, max_m);
     auto points = compute_deviation(estimator, record.phase_si, tau0_s, factors, {options.threads});
+    std::vector<PointConfidence> confidence;
     if (!options.no_ci) {
-      fill_confidence(points, estimator, record.phase_si, options.ci_level, options.noise_type);
+      confidence = fill_confidence(points, estimator, record.phase_si, options.ci_level, forced_alpha);
     }
     // SI inside, the input's unit at the edge: tdev is an angle, the others a rate.
     const bool integrated = estimator == Estimator::tdev;
@@ -148,7 +162,7 @@ void run_dev(const DevOptionsCli& options) {
       p.ci_low /= to_si;
       p.ci_high /= to_si;
     }
-    curves.push_back({estimator, std::move(points), unit_label(record, integrated)});
+    curves.push_back({estimator, std::move(points), unit_label(record, integrated), std::move(confidence)});
   }
   std::string text;
   if (options.format == "json") {
@@ -184,7 +198,8 @@ void setup_dev(CLI::App& app) {
       ->capture_default_str();
   command->add_flag("--no-ci", options->no_ci, "skip noise identification and confidence bounds");
   command->add_option("--noise-type", options->noise_type,
-                      "force the power-law noise type alpha (-4..2) instead of identifying it");
+                      "force the power-law noise type instead of identifying it: alpha -4..2 or "
+                      "WHPM FLPM WHFM FLFM RWFM FWFM RRFM");
   command->add_option("--format", options->format, "table, json or csv")->capture_default_str();
   command->add_option("--threads", options->threads, "worker threads (0: all cores)");
   command->add_option("-o,--output", options->output.path, "write to FILE instead of standard output");

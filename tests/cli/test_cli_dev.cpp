@@ -289,6 +289,7 @@ TEST(CliDevConfidence, LevelAndForcedNoiseType) {
   EXPECT_GT(w95, w683);
   const auto [w_forced, a_forced] = width({"--noise-type", "-2"});
   EXPECT_EQ(a_forced, -2);
+  EXPECT_EQ(width({"--noise-type", "FLFM"}).second, -1);
   expect_input_error(run_cli({"dev", file, "--rate", "1", "--noise-type", "7"}), {"7"});
   expect_input_error(run_cli({"dev", file, "--rate", "1", "--ci", "0"}), {"--ci"});
 }
