@@ -1,10 +1,10 @@
 #!/usr/bin/env bash
 # Sets up a fresh Debian 12 machine, builds, and runs the main job on the bundled example:
 # the overlapping Allan deviation, with confidence bounds, of a simulated TG-100 gyro
-# (paper's Table 2, gyro 1; 200 Hz, 20 minutes) shipped in data/.
+# (paper's Table 2, gyro 1; 200 Hz, 30 minutes) shipped in data/.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$here/scripts/setup.sh" default >&2
 cd "$here"
-./build/default/apps/imunoise/imunoise dev data/tg100_gyro1_20min.csv --rate 200 --units deg/s \
-  --column gyro1 --estimator oadev,mdev,ohdev --taus octave
+./build/default/apps/imunoise/imunoise dev data/tg100_gyro1_30min.f32 --rate 200 --units deg/s \
+  --estimator oadev,mdev,ohdev --taus octave
