@@ -5,9 +5,10 @@ data_type="phase", taus="octave")`` returns ``(taus, devs, errs, ns)``. As in Al
 default data_type is "phase" (angle); pass data_type="freq" (or "rate") for gyro rate samples.
 Deviations are in the unit of the rate; taus in seconds.
 """
-from ._imunoise import InputError, deviation
+from ._imunoise import InputError, deviation, simulate, simulate_preset
 
-__all__ = ["InputError", "deviation", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev"]
+__all__ = ["InputError", "deviation", "simulate", "simulate_preset", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev",
+           "totdev", "mtotdev", "ttotdev", "htotdev", "theo1", "mtie", "tierms"]
 
 
 def _estimator(name):
@@ -25,3 +26,12 @@ mdev = _estimator("mdev")
 tdev = _estimator("tdev")
 hdev = _estimator("hdev")
 ohdev = _estimator("ohdev")
+totdev = _estimator("totdev")
+mtotdev = _estimator("mtotdev")
+ttotdev = _estimator("ttotdev")
+htotdev = _estimator("htotdev")
+# Theo1: taus are 0.75 m / rate for even m (Stable32), e.g. 1.5, 3, 6, ... s at rate 1.
+theo1 = _estimator("theo1")
+# MTIE and TIE rms are in the angle (phase) unit.
+mtie = _estimator("mtie")
+tierms = _estimator("tierms")
