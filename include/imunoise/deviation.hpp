@@ -13,7 +13,7 @@ namespace imunoise {
 struct DevPoint {
   std::size_t m = 0;     ///< averaging factor
   double tau_s = 0.0;    ///< averaging time (s)
-  double dev = 0.0;      ///< deviation, in the rate unit of the input (tdev: angle unit)
+  double dev = 0.0;      ///< deviation, in the rate unit of the input (reports_angle(): angle unit)
   std::size_t n = 0;     ///< number of terms averaged
   double edf = std::numeric_limits<double>::quiet_NaN();      ///< equivalent degrees of freedom
   double ci_low = std::numeric_limits<double>::quiet_NaN();   ///< lower confidence bound
@@ -27,7 +27,8 @@ struct DevOptions {
 
 /// Computes `estimator` on angle (phase) samples x spaced tau0_s apart at each averaging
 /// factor in m_list (each must be within the estimator's domain; see estimator.hpp).
-/// Formulas and domains are documented in allan.hpp, modified_allan.hpp and hadamard.hpp.
+/// Formulas and domains are documented in allan.hpp, modified_allan.hpp, hadamard.hpp,
+/// total.hpp, theo.hpp (tau_s = 0.75 m tau0, even m) and time_error.hpp.
 std::vector<DevPoint> compute_deviation(Estimator estimator, std::span<const double> phase,
                                         double tau0_s, std::span<const std::size_t> m_list,
                                         const DevOptions& options = {});

@@ -14,7 +14,23 @@ enum class Estimator {
   tdev,   ///< time deviation, tau/sqrt(3) * mdev (reported in angle units)
   hdev,   ///< Hadamard deviation, non-overlapping
   ohdev,  ///< overlapping Hadamard deviation
+  totdev,   ///< total deviation (reflected phase; total.hpp)
+  mtotdev,  ///< modified total deviation (total.hpp)
+  ttotdev,  ///< time total deviation, tau/sqrt(3) * mtotdev (angle units)
+  htotdev,  ///< Hadamard total deviation (total.hpp)
+  theo1,    ///< Theo1 deviation, tau = 0.75 m tau0, even m only (theo.hpp)
+  mtie,     ///< maximum time interval error (angle units; time_error.hpp)
+  tierms,   ///< rms time interval error (angle units; time_error.hpp)
 };
+
+/// True for the estimators reported in the angle (integrated) unit: tdev, ttotdev, mtie, tierms.
+bool reports_angle(Estimator estimator);
+
+/// True for the estimators whose averaging factor must be even (theo1).
+bool requires_even_factor(Estimator estimator);
+
+/// tau / (m tau0): 0.75 for theo1 (Stable32 convention), 1 for all others.
+double tau_per_factor(Estimator estimator);
 
 /// Every estimator this build provides, in display order.
 std::vector<Estimator> all_estimators();

@@ -11,6 +11,7 @@
 #include "imunoise/phase.hpp"
 #include "imunoise/series.hpp"
 #include "imunoise/tau_grid.hpp"
+#include "imunoise/theo.hpp"
 
 namespace py = pybind11;
 
@@ -52,7 +53,7 @@ py::tuple deviation(const std::string& name, const Array& data, double rate,
     grid.kind = TauGrid::Kind::taus_s;
     grid.taus_s = taus.cast<std::vector<double>>();
   }
-  const auto factors = averaging_factors(grid, rate, max_averaging_factor(estimator, phase.size()));
+  const auto factors = estimator_averaging_factors(estimator, grid, rate, phase.size());
   std::vector<DevPoint> points;
   {
     py::gil_scoped_release release;

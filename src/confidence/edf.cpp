@@ -286,14 +286,37 @@ std::optional<DifferenceVariance> difference_variance(Estimator estimator) {
       return DifferenceVariance{3, false, false};
     case Estimator::ohdev:
       return DifferenceVariance{3, false, true};
+    default:
+      break;
       // Hook: totdev, mtotdev, ttotdev, htotdev, theo1, mtie, tierms are not finite-difference
       // variances of this kind; they return nullopt and get their EDF in edf() below.
   }
   return std::nullopt;
 }
 
+std::optional<Estimator> finite_difference_proxy(Estimator estimator) {
+  switch (estimator) {
+    case Estimator::totdev:
+    case Estimator::theo1:
+      return Estimator::oadev;
+    case Estimator::mtotdev:
+    case Estimator::ttotdev:
+      return Estimator::mdev;
+    case Estimator::htotdev:
+      return Estimator::ohdev;
+    case Estimator::mtie:
+    case Estimator::tierms:
+      return std::nullopt;
+    default:
+      return estimator;
+  }
+}
+
 bool alpha_in_domain(Estimator estimator, int alpha) {
-  const auto v = difference_variance(estimator);
+  const auto proxy = finite_difference_proxy(estimator);
+  if (!proxy) return false;
+  if (estimator == Estimator::theo1 && (alpha < -2 || alpha > 2)) return false;
+  const auto v = difference_variance(*proxy);
   if (!v) return false;
   return alpha >= kMinNoiseAlpha && alpha <= kMaxNoiseAlpha && alpha + 2 * v->d > 1;
 }
@@ -391,11 +414,83 @@ Edf edf(Estimator estimator, int alpha, std::size_t m, std::size_t n_phase) {
     if (std::isnan(value)) return {};
     return {value, EdfMethod::greenhall_riley};
   }
-  // Hook for the estimators outside the finite-difference families. When they land:
-  //   totdev, mtotdev, ttotdev, htotdev: NIST SP 1065 edf = b (T/tau) - c tables by alpha;
-  //   theo1: SP 1065 Theo1 formulas by alpha; mtie, tierms: no chi-squared EDF is defined.
-  // Each returns {value, EdfMethod::sp1065}; until then the EDF is reported as not available.
-  return {};
+  // The total family and Theo1: SP 1065; mtie and tierms: no chi-squared EDF is defined.
+  return total_edf(estimator, alpha, m, n_phase);
+}
+
+Edf total_edf(Estimator estimator, int alpha, std::size_t m, std::size_t n_phase) {
+  if (!alpha_in_domain(estimator, alpha) || m == 0 || n_phase == 0 ||
+      m > max_averaging_factor(estimator, n_phase)) {
+    return {};
+  }
+  const double N = static_cast<double>(n_phase);
+  const double mm = static_cast<double>(m);
+  const double ratio = N / mm;  // T / tau
+  auto checked = [](double value, EdfMethod method) -> Edf {
+    if (!(value > 0.0) || !std::isfinite(value)) return {};
+    return {value, method};
+  };
+  auto proxy_edf = [&](Estimator proxy) -> Edf {
+    const double value = greenhall_riley_edf(alpha, *difference_variance(proxy), m, n_phase);
+    return checked(value, EdfMethod::greenhall_riley);
+  };
+  switch (estimator) {
+    case Estimator::totdev: {
+      // SP 1065 Table 7, rows alpha = 0, -1, -2.
+      constexpr std::array<TableEntry, 3> kTotvar{{{1.50, 0.0}, {1.17, 0.22}, {0.93, 0.36}}};
+      if (alpha > 0) return proxy_edf(Estimator::oadev);
+      const TableEntry t = kTotvar[static_cast<std::size_t>(-alpha)];
+      return checked(t.a0 * ratio - t.a1, EdfMethod::sp1065);
+    }
+    case Estimator::mtotdev:
+    case Estimator::ttotdev: {
+      // SP 1065 Table 8, rows alpha = 2 .. -2.
+      constexpr std::array<TableEntry, 5> kModTotvar{
+          {{1.90, 2.10}, {1.20, 1.40}, {1.10, 1.20}, {0.85, 0.50}, {0.75, 0.31}}};
+      const TableEntry t = kModTotvar[static_cast<std::size_t>(2 - alpha)];
+      return checked(t.a0 * ratio - t.a1, EdfMethod::sp1065);
+    }
+    case Estimator::htotdev: {
+      constexpr std::array<TableEntry, 3> kHtotvar{{{0.559, 1.004}, {0.868, 1.140}, {0.938, 1.696}}};
+      if (m < 16 || alpha > 0 || alpha < -2) return proxy_edf(Estimator::ohdev);
+      const TableEntry t = kHtotvar[static_cast<std::size_t>(-alpha)];
+      return checked(ratio / (t.a0 + t.a1 / ratio), EdfMethod::sp1065);
+    }
+    case Estimator::theo1: {
+      const double r = 0.75 * mm;
+      double value = kNaN;
+      switch (alpha) {
+        case 2:
+          value = 0.86 * (N + 1.0) * (N - 4.0 * r / 3.0) / (N - r) * r / (r + 1.14);
+          break;
+        case 1:
+          value = (4.798 * N * N - 6.374 * N * r + 12.387 * r) / (std::sqrt(r + 36.6) * (N - r)) *
+                  r / (r + 0.3);
+          break;
+        case 0: {
+          const double r15 = r * std::sqrt(r);
+          value = ((4.1 * N + 0.8) / r - (3.1 * N + 6.5) / N) * r15 / (r15 + 5.2);
+          break;
+        }
+        case -1: {
+          const double r3 = r * r * r;
+          value = (2.0 * N * N - 1.3 * N * r - 3.5 * r) / (N * r) * r3 / (r3 + 2.3);
+          break;
+        }
+        case -2: {
+          const double a = 4.4 * N - 1.0;
+          const double b = 4.4 * N - 3.0;
+          value = (4.4 * N - 2.0) / (2.9 * r) * (a * a - 8.6 * r * a + 11.4 * r * r) / (b * b);
+          break;
+        }
+        default:
+          break;
+      }
+      return checked(value, EdfMethod::sp1065);
+    }
+    default:
+      return {};
+  }
 }
 
 }  // namespace imunoise

@@ -11,8 +11,10 @@ namespace imunoise {
 namespace {
 
 std::string domain_text(Estimator estimator) {
-  const auto v = difference_variance(estimator);
+  const auto proxy = finite_difference_proxy(estimator);
+  const auto v = proxy ? difference_variance(*proxy) : std::nullopt;
   if (!v) return "no noise type";
+  if (estimator == Estimator::theo1) return "-2 .. 2";
   return std::to_string(std::max(kMinNoiseAlpha, 2 - 2 * v->d)) + " .. 2";
 }
 
@@ -22,7 +24,8 @@ std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Esti
                                              std::span<const double> phase,
                                              const ConfidenceOptions& options) {
   validate_confidence_level(options.level);
-  if (options.forced_alpha && !alpha_in_domain(estimator, *options.forced_alpha)) {
+  if (options.forced_alpha && finite_difference_proxy(estimator) &&
+      !alpha_in_domain(estimator, *options.forced_alpha)) {
     const int alpha = *options.forced_alpha;
     throw InputError("noise type alpha = " + std::to_string(alpha) + " (" +
                      std::string(noise_type_name(alpha)) + ") is outside the domain of " +
@@ -44,6 +47,13 @@ std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Esti
     DevPoint& point = points[index];
     PointConfidence& out = info[index];
 
+    if (!finite_difference_proxy(estimator)) {
+      // MTIE and TIE rms are extreme-value / rms statistics of the phase with no power-law
+      // chi-squared model: no EDF and no bounds, said once per point.
+      out.note = "no chi-squared confidence interval is defined for " +
+                 std::string(estimator_name(estimator));
+      continue;
+    }
     if (options.forced_alpha) {
       out.noise.alpha = *options.forced_alpha;
       out.noise.method = NoiseIdMethod::forced;

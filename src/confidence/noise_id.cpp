@@ -19,8 +19,11 @@ std::size_t decimated_count(std::size_t n_phase, std::size_t m) {
   return n_phase == 0 ? 0 : (n_phase - 1) / m + 1;
 }
 
+// The total family and Theo1 identify noise as their finite-difference proxies do (edf.hpp).
 int family_d(Estimator estimator) {
-  const auto v = difference_variance(estimator);
+  const auto proxy = finite_difference_proxy(estimator);
+  if (!proxy) return 0;
+  const auto v = difference_variance(*proxy);
   return v ? v->d : 0;
 }
 

@@ -8,6 +8,9 @@
 #include "imunoise/error.hpp"
 #include "imunoise/hadamard.hpp"
 #include "imunoise/modified_allan.hpp"
+#include "imunoise/theo.hpp"
+#include "imunoise/time_error.hpp"
+#include "imunoise/total.hpp"
 
 namespace imunoise {
 namespace {
@@ -99,6 +102,13 @@ std::vector<DevPoint> compute_deviation(Estimator estimator, std::span<const dou
     case Estimator::tdev: return tdev(phase, tau0_s, factors, options);
     case Estimator::hdev: return hdev(phase, tau0_s, factors, options);
     case Estimator::ohdev: return ohdev(phase, tau0_s, factors, options);
+    case Estimator::totdev: return totdev(phase, tau0_s, factors, options);
+    case Estimator::mtotdev: return mtotdev(phase, tau0_s, factors, options);
+    case Estimator::ttotdev: return ttotdev(phase, tau0_s, factors, options);
+    case Estimator::htotdev: return htotdev(phase, tau0_s, factors, options);
+    case Estimator::theo1: return theo1(phase, tau0_s, factors, options);
+    case Estimator::mtie: return mtie(phase, tau0_s, factors, options);
+    case Estimator::tierms: return tierms(phase, tau0_s, factors, options);
   }
   throw InputError("unsupported estimator");
 }

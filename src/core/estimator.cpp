@@ -18,6 +18,10 @@ constexpr std::array kEstimators{
     EstimatorInfo{Estimator::adev, "adev"},   EstimatorInfo{Estimator::oadev, "oadev"},
     EstimatorInfo{Estimator::mdev, "mdev"},   EstimatorInfo{Estimator::tdev, "tdev"},
     EstimatorInfo{Estimator::hdev, "hdev"},   EstimatorInfo{Estimator::ohdev, "ohdev"},
+    EstimatorInfo{Estimator::totdev, "totdev"}, EstimatorInfo{Estimator::mtotdev, "mtotdev"},
+    EstimatorInfo{Estimator::ttotdev, "ttotdev"}, EstimatorInfo{Estimator::htotdev, "htotdev"},
+    EstimatorInfo{Estimator::theo1, "theo1"}, EstimatorInfo{Estimator::mtie, "mtie"},
+    EstimatorInfo{Estimator::tierms, "tierms"},
 };
 
 std::string known_names() {
@@ -84,6 +88,19 @@ std::size_t term_count(Estimator estimator, std::size_t n_phase, std::size_t m) 
       return last >= 3 * m ? (last - 3 * m) / m + 1 : 0;
     case Estimator::ohdev:
       return last >= 3 * m ? n_phase - 3 * m : 0;
+    case Estimator::totdev:  // one term per interior point of the reflected sequence
+      return m <= max_averaging_factor(estimator, n_phase) ? n_phase - 2 : 0;
+    case Estimator::mtotdev:
+    case Estimator::ttotdev:  // one 3m-point phase subsequence per term
+      return n_phase >= 3 * m ? n_phase - 3 * m + 1 : 0;
+    case Estimator::htotdev:  // one 3m-point frequency subsequence per term; m = 1 is ohdev
+      if (m == 1) return n_phase >= 4 ? n_phase - 3 : 0;
+      return n_phase >= 3 * m + 1 ? n_phase - 3 * m : 0;
+    case Estimator::theo1:  // (N - m) start points times m/2 spans, as Stable32 counts
+      return (m % 2 == 0 && m < n_phase) ? (n_phase - m) * (m / 2) : 0;
+    case Estimator::mtie:
+    case Estimator::tierms:  // windows of m + 1 points
+      return m < n_phase ? n_phase - m : 0;
   }
   return 0;
 }
@@ -100,8 +117,31 @@ std::size_t max_averaging_factor(Estimator estimator, std::size_t n_phase) {
     case Estimator::hdev:
     case Estimator::ohdev:
       return (n_phase - 1) / 3;
+    case Estimator::totdev:
+      return n_phase >= 3 ? (n_phase - 1) / 2 : 0;
+    case Estimator::mtotdev:
+    case Estimator::ttotdev:
+      return n_phase / 3;
+    case Estimator::htotdev:
+      return n_phase >= 4 ? (n_phase - 1) / 3 : 0;
+    case Estimator::theo1: {
+      const std::size_t m = n_phase - 1;  // largest m with i + m <= N - 1 for i = 0
+      return m >= 2 ? m - m % 2 : 0;
+    }
+    case Estimator::mtie:
+    case Estimator::tierms:
+      return n_phase - 1;
   }
   return 0;
 }
+
+bool reports_angle(Estimator estimator) {
+  return estimator == Estimator::tdev || estimator == Estimator::ttotdev ||
+         estimator == Estimator::mtie || estimator == Estimator::tierms;
+}
+
+bool requires_even_factor(Estimator estimator) { return estimator == Estimator::theo1; }
+
+double tau_per_factor(Estimator estimator) { return estimator == Estimator::theo1 ? 0.75 : 1.0; }
 
 }  // namespace imunoise

@@ -45,6 +45,8 @@ inline double reference_deviation(Estimator estimator, const std::vector<double>
       return static_cast<double>(estimator == Estimator::tdev ? mdev * tau / std::sqrt(3.0L)
                                                               : mdev);
     }
+    default:  // the total, Theo and time-error families: reference_total.hpp
+      break;
   }
   return NAN;
 }

@@ -95,7 +95,9 @@ TEST_P(Accumulate, EmptyAccumulatorIsIdentity) {
     const auto got = acc->deviations(kTau0);
     for (std::size_t i = 0; i < got.size(); ++i) {
       EXPECT_EQ(got[i].n, want[i].n);
-      if (want[i].n > 0) EXPECT_EQ(got[i].dev, want[i].dev);
+      if (want[i].n > 0) {
+        EXPECT_EQ(got[i].dev, want[i].dev);
+      }
     }
   }
 }

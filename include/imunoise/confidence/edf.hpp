@@ -49,7 +49,7 @@ int parse_noise_type(std::string_view text);
 /// How an EDF value was obtained.
 enum class EdfMethod {
   greenhall_riley,  ///< Greenhall & Riley 2003 (Allan, modified Allan, Hadamard families)
-  sp1065,           ///< NIST SP 1065 formulas/tables (total family, Theo1: hook, none yet)
+  sp1065,           ///< NIST SP 1065 formulas/tables (total family and Theo1; see total_edf)
   ieee952_simple,   ///< rough IEEE 952 fallback edf = N/m - 1, noise-type blind: used only where
                     ///< nothing better is defined (no noise type could be identified)
   not_available,    ///< no EDF: alpha outside the estimator's domain, too few data, or an
@@ -73,12 +73,35 @@ struct DifferenceVariance {
 };
 
 /// The structure of `estimator`, or nullopt for estimators outside the Allan/Hadamard families
-/// (the hook for the total family, Theo1, MTIE and TIE rms when they are added).
+/// (the total family, Theo1, MTIE and TIE rms).
 std::optional<DifferenceVariance> difference_variance(Estimator estimator);
 
+/// The finite-difference estimator whose noise identification and noise-type domain an
+/// estimator shares: itself for the Allan/Hadamard families; oadev for totdev and theo1, mdev
+/// for mtotdev and ttotdev, ohdev for htotdev; nullopt for mtie and tierms (no noise model).
+std::optional<Estimator> finite_difference_proxy(Estimator estimator);
+
 /// Whether the estimator converges for noise type alpha (alpha + 2d > 1): -2..2 for the Allan
-/// family (adev, oadev, mdev, tdev), -4..2 for the Hadamard family.
+/// family (adev, oadev, mdev, tdev) and for totdev, mtotdev, ttotdev, theo1; -4..2 for the
+/// Hadamard family and htotdev; never for mtie and tierms.
 bool alpha_in_domain(Estimator estimator, int alpha);
+
+/// NIST SP 1065 EDF of the total family and Theo1 (N = n_phase, T/tau = N/m as Stable32):
+///   totdev  (SP 1065 Table 7):  b N/m - c; alpha 0: (1.50, 0), -1: (1.17, 0.22), -2: (0.93, 0.36);
+///           for white and flicker PM (no entry) the oadev Greenhall-Riley EDF, a lower bound.
+///   mtotdev, ttotdev (Table 8): b N/m - c; alpha 2: (1.90, 2.10), 1: (1.20, 1.40),
+///           0: (1.10, 1.20), -1: (0.85, 0.50), -2: (0.75, 0.31).
+///   htotdev (Howe et al., PTTI 2000, as in Stable32): m < 16 and alpha without an entry: the
+///           ohdev Greenhall-Riley EDF; otherwise (N/m) / (b0 + b1 m/N); alpha 0: (0.559, 1.004),
+///           -1: (0.868, 1.140), -2: (0.938, 1.696).
+///   theo1 (Howe & Peppler 2003; SP 1065 sec. 5.2.15), r = 0.75 m:
+///     alpha  2: 0.86 (N+1)(N - 4r/3) / (N - r) * r / (r + 1.14)
+///     alpha  1: (4.798 N^2 - 6.374 N r + 12.387 r) / (sqrt(r + 36.6) (N - r)) * r / (r + 0.3)
+///     alpha  0: ((4.1 N + 0.8)/r - (3.1 N + 6.5)/N) * r^1.5 / (r^1.5 + 5.2)
+///     alpha -1: (2 N^2 - 1.3 N r - 3.5 r) / (N r) * r^3 / (r^3 + 2.3)
+///     alpha -2: (4.4 N - 2)/(2.9 r) * ((4.4 N - 1)^2 - 8.6 r (4.4 N - 1) + 11.4 r^2) / (4.4 N - 3)^2
+/// Returns {NaN, not_available} outside these domains (and always for mtie, tierms).
+Edf total_edf(Estimator estimator, int alpha, std::size_t m, std::size_t n_phase);
 
 /// Greenhall & Riley EDF of a d-th difference variance estimator at averaging factor m over
 /// n_phase phase samples, for integer alpha in -4..2. NaN when alpha + 2d <= 1, m = 0, or
@@ -97,9 +120,10 @@ double greenhall_riley_edf_simple(int alpha, const DifferenceVariance& variance,
 double ieee952_edf(std::size_t m, std::size_t n_phase);
 
 /// EDF of `estimator` at averaging factor m over n_phase phase samples for noise type alpha.
-/// Allan and Hadamard families: Greenhall & Riley (tdev shares mdev's EDF). Returns
+/// Allan and Hadamard families: Greenhall & Riley (tdev shares mdev's EDF); total family and
+/// Theo1: total_edf() (SP 1065). Returns
 /// {NaN, not_available} when alpha is outside the estimator's domain or the data are too short,
-/// and for estimators whose EDF is not yet defined in this build (never throws for those).
+/// and for mtie and tierms, which have no chi-squared EDF (never throws for those).
 /// The IEEE 952 fallback is not substituted here; fill_confidence() uses it, labelled, only when
 /// no noise type is known.
 Edf edf(Estimator estimator, int alpha, std::size_t m, std::size_t n_phase);

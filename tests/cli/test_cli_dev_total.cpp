@@ -1,0 +1,84 @@
+// imunoise dev with the total, Theo1 and time-error estimators: --estimator all, Theo1's tau
+// convention, angle units of MTIE / TIE rms / ttotdev, and labelled bias-corrected curves.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <string>
+
+#include "cli/cli_runner.hpp"
+#include "core/nbs14.hpp"
+
+namespace imunoise {
+namespace {
+
+using test::run_cli;
+using test::TempDir;
+
+std::string nbs14_text() {
+  std::string s;
+  char buf[64];
+  for (double v : test::nbs14_1000_point_frequency()) {
+    std::snprintf(buf, sizeof buf, "%.17g\n", v);
+    s += buf;
+  }
+  return s;
+}
+
+TEST(CliDevTotal, AllEstimatorsThroughJson) {
+  TempDir dir;
+  const auto file = dir.write("nbs14.txt", nbs14_text());
+  const auto r = run_cli({"dev", file, "--rate", "1", "--units", "deg/s", "--estimator", "all",
+                          "--taus", "octave", "--format", "json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j.size(), 13u);
+  bool saw_theo = false;
+  for (const auto& curve : j) {
+    const std::string name = curve["estimator"];
+    const std::string unit = curve["unit"];
+    if (name == "theo1") {
+      saw_theo = true;
+      EXPECT_EQ(curve["points"][0]["m"], 2);
+      EXPECT_DOUBLE_EQ(curve["points"][0]["tau_s"].get<double>(), 1.5);
+    }
+    if (name == "mtie" || name == "tierms" || name == "ttotdev") {
+      EXPECT_EQ(unit, "deg") << name;
+      EXPECT_TRUE(curve["points"][0]["ci_low"].is_null() == (name != "ttotdev")) << name;
+    }
+    if (name == "mtotdev") {
+      EXPECT_NEAR(curve["points"][1]["dev"].get<double>(), 1.4337e-01, 0.00005e-01);
+      EXPECT_EQ(curve["points"][1]["edf_method"], "sp1065");
+    }
+  }
+  EXPECT_TRUE(saw_theo);
+}
+
+TEST(CliDevTotal, TheoTausAndBiasCorrectedCurve) {
+  TempDir dir;
+  const auto file = dir.write("nbs14.txt", nbs14_text());
+  const auto r = run_cli({"dev", file, "--rate", "1", "--estimator", "theo1", "--taus", "2,7.5",
+                          "--format", "json"});
+  // 2 s is not a Theo1 tau (0.75 m for even m): refused, naming the rule.
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("0.75 m"), std::string::npos) << r.err;
+  const auto theo = run_cli({"dev", file, "--rate", "1", "--estimator", "theo1", "--taus",
+                             "1.5,7.5", "--format", "json"});
+  ASSERT_EQ(theo.exit_code, 0) << theo.err;
+  const auto t = nlohmann::json::parse(theo.out);
+  EXPECT_EQ(t["points"][1]["m"], 10);
+  EXPECT_NEAR(t["points"][1]["dev"].get<double>(), 1.0757e-01, 0.00005e-01);  // Stable32
+  const auto ok = run_cli({"dev", file, "--rate", "1", "--estimator", "htotdev", "--af", "2",
+                           "--format", "json", "--bias-correct", "--noise-type", "0"});
+  ASSERT_EQ(ok.exit_code, 0) << ok.err;
+  const auto j = nlohmann::json::parse(ok.out);
+  ASSERT_EQ(j.size(), 2u);
+  EXPECT_EQ(j[0]["estimator"], "htotdev");
+  EXPECT_EQ(j[1]["estimator"], "htotdev-bc");
+  EXPECT_EQ(j[1]["bias_corrected"], true);
+  EXPECT_NEAR(j[0]["points"][0]["dev"].get<double>(), 2.0247e-01, 0.00005e-01);  // Stable32, raw
+  EXPECT_NEAR(j[1]["points"][0]["dev"].get<double>(), 2.0297e-01, 0.00005e-01);  // corrected
+}
+
+}  // namespace
+}  // namespace imunoise
