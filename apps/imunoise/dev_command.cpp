@@ -13,6 +13,8 @@
 #include "imunoise/deviation.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/tau_grid.hpp"
+#include "imunoise/theo.hpp"
+#include "imunoise/total.hpp"
 #include "input_options.hpp"
 #include "output.hpp"
 
@@ -28,12 +30,14 @@ struct DevOptionsCli {
   double ci_level = 0.683;
   std::string noise_type;
   bool no_ci = false;
+  bool bias_correct = false;
   std::string format = "table";
   unsigned threads = 0;
 };
 
 struct Curve {
   Estimator estimator;
+  std::string label;  // estimator name; "<name>-bc" for a bias-corrected copy
   std::vector<DevPoint> points;  // in the output unit
   std::string unit;
   std::vector<PointConfidence> confidence;  // empty with --no-ci
@@ -46,7 +50,7 @@ nlohmann::json json_number(double v) {
 std::string format_json(const PhaseRecord& record, const std::vector<Curve>& curves) {
   auto array = nlohmann::json::array();
   for (const auto& curve : curves) {
-    nlohmann::json object{{"estimator", estimator_name(curve.estimator)},
+    nlohmann::json object{{"estimator", curve.label},
                           {"input", input_kind_name(record.kind)},
                           {"rate_hz", record.rate_hz},
                           {"n_samples", record.n_samples},
@@ -68,6 +72,7 @@ std::string format_json(const PhaseRecord& record, const std::vector<Curve>& cur
       points.push_back(std::move(point));
     }
     object["points"] = std::move(points);
+    if (curve.label != estimator_name(curve.estimator)) object["bias_corrected"] = true;
     if (record.timing) {
       const auto& t = *record.timing;
       object["timing"] = {{"rate_hz", t.rate_hz}, {"median_dt_s", t.median_dt_s},
@@ -86,7 +91,7 @@ std::string format_csv(const std::vector<Curve>& curves) {
   for (const auto& curve : curves) {
     for (const auto& p : curve.points) {
       out += fmt::format("{},{},{:.9g},{:.10g},{},{},{:.6g},{:.10g},{:.10g},{}\n",
-                         estimator_name(curve.estimator), p.m, p.tau_s, p.dev, curve.unit, p.n,
+                         curve.label, p.m, p.tau_s, p.dev, curve.unit, p.n,
                          p.edf, p.ci_low, p.ci_high,
                          p.alpha == std::numeric_limits<int>::min() ? std::string()
                                                                      : std::to_string(p.alpha));
@@ -107,8 +112,10 @@ std::string format_table(const PhaseRecord& record, const std::vector<Curve>& cu
                        t.gaps.size(), t.missing_samples);
   }
   for (const auto& curve : curves) {
-    out += fmt::format("\n{} [{}], {:.1f}% confidence\n", estimator_name(curve.estimator),
-                       curve.unit, 100 * level);
+    out += fmt::format("\n{} [{}], {:.1f}% confidence{}\n", curve.label, curve.unit, 100 * level,
+                       curve.label != estimator_name(curve.estimator)
+                           ? " (bias-corrected for the noise type alpha)"
+                           : "");
     out += fmt::format("{:>10} {:>13} {:>13} {:>11} {:>11} {:>13} {:>13} {:>5}\n", "m", "tau [s]",
                        "dev", "n", "edf", "ci_low", "ci_high", "alpha");
     for (const auto& p : curve.points) {
@@ -134,6 +141,10 @@ void run_dev(const DevOptionsCli& options) {
   const TauGrid grid = options.factors.empty() ? parse_tau_grid(options.taus)
                                                : parse_factor_list(options.factors);
   if (!options.no_ci) validate_confidence_level(options.ci_level, "--ci");
+  if (options.no_ci && options.bias_correct) {
+    throw InputError("--bias-correct needs the noise type at each tau: drop --no-ci (the noise "
+                     "type is identified, or forced with --noise-type)");
+  }
   const std::optional<int> forced_alpha =
       options.noise_type.empty() ? std::nullopt : std::optional<int>(parse_noise_type(options.noise_type));
   const PhaseRecord record = load_phase(options.input);
@@ -145,24 +156,40 @@ void run_dev(const DevOptionsCli& options) {
     if (max_m == 0) {
       throw InputError(record.source + ": " + std::to_string(record.n_samples) +
                        " samples are too few for " + std::string(estimator_name(estimator)) +
-                       " (it needs at least " + (estimator == Estimator::hdev || estimator == Estimator::ohdev ? "3" : "2") +
+                       " (it needs at least " + (estimator == Estimator::hdev || estimator == Estimator::ohdev ||
+                                        estimator == Estimator::htotdev
+                                    ? "3" : "2") +
                        " rate samples); record longer");
     }
-    const auto factors = averaging_factors(grid, record.rate_hz, max_m);
+    const auto factors =
+        estimator_averaging_factors(estimator, grid, record.rate_hz, record.phase_si.size());
     auto points = compute_deviation(estimator, record.phase_si, tau0_s, factors, {options.threads});
     std::vector<PointConfidence> confidence;
     if (!options.no_ci) {
       confidence = fill_confidence(points, estimator, record.phase_si, options.ci_level, forced_alpha);
     }
-    // SI inside, the input's unit at the edge: tdev is an angle, the others a rate.
-    const bool integrated = estimator == Estimator::tdev;
+    // SI inside, the input's unit at the edge: tdev, ttotdev, mtie, tierms are angles.
+    const bool integrated = reports_angle(estimator);
     const double to_si = integrated ? integral_unit(record.rate_unit).to_si : record.rate_unit.to_si;
     for (auto& p : points) {
       p.dev /= to_si;
       p.ci_low /= to_si;
       p.ci_high /= to_si;
     }
-    curves.push_back({estimator, std::move(points), unit_label(record, integrated), std::move(confidence)});
+    const std::string name(estimator_name(estimator));
+    std::vector<DevPoint> corrected;
+    const bool has_correction = estimator == Estimator::totdev || estimator == Estimator::mtotdev ||
+                                estimator == Estimator::ttotdev ||
+                                estimator == Estimator::htotdev || estimator == Estimator::theo1;
+    if (options.bias_correct && has_correction) {
+      corrected = points;
+      apply_bias_correction(corrected, estimator, record.phase_si.size());
+    }
+    curves.push_back({estimator, name, std::move(points), unit_label(record, integrated), confidence});
+    if (options.bias_correct && has_correction) {
+      curves.push_back({estimator, name + "-bc", std::move(corrected), unit_label(record, integrated),
+                        std::move(confidence)});
+    }
   }
   std::string text;
   if (options.format == "json") {
@@ -188,7 +215,8 @@ void setup_dev(CLI::App& app) {
                                             "confidence bounds");
   add_input_options(*command, options->input);
   command->add_option("--estimator", options->estimators,
-                      "estimator(s): adev oadev mdev tdev hdev ohdev, comma-separated, or all")
+                      "estimator(s): adev oadev mdev tdev hdev ohdev totdev mtotdev ttotdev htotdev "
+                      "theo1 mtie tierms, comma-separated, or all")
       ->capture_default_str();
   command->add_option("--taus", options->taus,
                       "tau grid: octave, decade, all, perdecade:K, or taus in s (0.1,1,10)")
@@ -197,6 +225,9 @@ void setup_dev(CLI::App& app) {
   command->add_option("--ci", options->ci_level, "confidence level of the bounds")
       ->capture_default_str();
   command->add_flag("--no-ci", options->no_ci, "skip noise identification and confidence bounds");
+  command->add_flag("--bias-correct", options->bias_correct,
+                    "also report totdev, mtotdev, ttotdev, htotdev, theo1 corrected for their "
+                    "noise-type bias, as <name>-bc (docs/estimators.md)");
   command->add_option("--noise-type", options->noise_type,
                       "force the power-law noise type instead of identifying it: alpha -4..2 or "
                       "WHPM FLPM WHFM FLFM RWFM FWFM RRFM");

@@ -91,10 +91,30 @@ io::BinaryReadOptions binary_options(const InputOptions& options) {
   return read;
 }
 
+// Sample rates outside this range are a typo or a unit mix-up (Hz vs kHz vs period), not a sensor.
+constexpr double kMinRateHz = 1e-6;
+constexpr double kMaxRateHz = 1e9;
+
 void require_rate(double rate_hz, const std::string& source) {
   if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) {
     throw InputError(source + ": the sample rate must be positive and finite, got " +
                      fmt::format("{}", rate_hz) + " Hz; pass --rate HZ or --time-column");
+  }
+  if (rate_hz < kMinRateHz || rate_hz > kMaxRateHz) {
+    throw InputError(source + ": a sample rate of " + fmt::format("{}", rate_hz) +
+                     " Hz is outside " + fmt::format("{:g}..{:g}", kMinRateHz, kMaxRateHz) +
+                     " Hz; --rate is in Hz (samples per second)");
+  }
+}
+
+// Values so large that their running integral overflows cannot be analysed; say so instead of
+// printing NaN.
+void require_finite_phase(const PhaseRecord& record) {
+  for (std::size_t k = 0; k < record.phase_si.size(); ++k) {
+    if (!std::isfinite(record.phase_si[k])) {
+      throw InputError(record.source + ": the integral of the samples overflows at sample " +
+                       std::to_string(k) + "; check --units, --scale and --sensitivity");
+    }
   }
 }
 
@@ -213,6 +233,7 @@ PhaseRecord load_phase(const InputOptions& options) {
     load_text(options, record, to_si);
   }
   if (record.n_samples == 0) throw InputError(record.source + ": no samples");
+  require_finite_phase(record);
   return record;
 }
 

@@ -14,6 +14,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "imunoise 0.1.0");
   imunoise::cli::setup_dev(app);
   imunoise::cli::setup_simulate(app);
+  imunoise::cli::setup_fit(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

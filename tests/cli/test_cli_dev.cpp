@@ -210,6 +210,14 @@ TEST(CliDevBadInput, ZeroOrNegativeRate) {
   expect_input_error(run_cli({"dev", in, "--rate", "0"}), {"rate"});
   expect_input_error(run_cli({"dev", in, "--rate", "-200"}), {"rate"});
   expect_input_error(run_cli({"dev", in}), {"--rate"});
+  expect_input_error(run_cli({"dev", in, "--rate", "1e-300"}), {"outside", "Hz"});
+}
+
+TEST(CliDevBadInput, AbsurdScaleOverflows) {
+  TempDir dir;
+  const auto in = dir.write("in.txt", "1e300\n2e300\n-1e300\n1e300\n");
+  expect_input_error(run_cli({"dev", in, "--rate", "1", "--scale", "1e10"}), {"overflow", "--scale"});
+  expect_input_error(run_cli({"dev", in, "--rate", "1", "--scale", "0"}), {"--scale"});
 }
 
 TEST(CliDevBadInput, UnknownEstimatorUnitFormatAndLevel) {

@@ -1,0 +1,283 @@
+// imunoise fit: noise-model coefficients (paper eq. 5) with confidence intervals, the verdict
+// on each term, fit diagnostics, and (through spec_exports) the datasheet comparison and the
+// Kalibr / Kalman-filter exports.
+#include <cmath>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "imunoise/allan.hpp"
+#include "imunoise/error.hpp"
+#include "imunoise/fit/fit.hpp"
+#include "imunoise/tau_grid.hpp"
+#include "imunoise/theo.hpp"
+#include "input_options.hpp"
+#include "output.hpp"
+#include "spec_exports.hpp"
+
+namespace imunoise::cli {
+namespace {
+
+struct FitOptionsCli {
+  InputOptions input;
+  OutputOptions output;
+  SpecExportOptions spec;
+  std::string method = "wls";
+  std::string terms = "Q,N,B,K";
+  std::string taus = "octave";
+  std::string selection = "none";
+  double level = 0.95;
+  int min_dominant_taus = 2;
+  bool gls = false;
+  std::string format = "json";
+};
+
+std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.5g}", v) : "-"; }
+
+nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+const Coefficient& coefficient(const NoiseCoefficients& c, int term) {
+  switch (term) {
+    case fit::kQ: return c.quantization;
+    case fit::kN: return c.random_walk;
+    case fit::kB: return c.bias_instability;
+    case fit::kK: return c.rate_random_walk;
+    default: return c.rate_ramp;
+  }
+}
+
+/// Unit names of the five coefficients in the input's unit system.
+std::vector<std::string> coefficient_units(const std::string& rate) {
+  const bool per_s = rate.size() > 2 && rate.compare(rate.size() - 2, 2, "/s") == 0;
+  if (per_s) {
+    const std::string base = rate.substr(0, rate.size() - 2);
+    return {base, base + "/sqrt(s)", rate, rate + "/sqrt(s)", base + "/s^2"};
+  }
+  return {rate + "*s", rate + "*sqrt(s)", rate, rate + "/sqrt(s)", rate + "/s"};
+}
+
+const CustomaryUnit& customary(int term) {
+  static const CustomaryUnit* units[fit::kTermCount] = {&customary_gyro_Q, &customary_gyro_N,
+                                                        &customary_gyro_B, &customary_gyro_K,
+                                                        &customary_gyro_R};
+  return *units[term];
+}
+
+bool gyro(const PhaseRecord& record) {
+  return record.unit_given && record.rate_unit.quantity == Quantity::angular_rate;
+}
+
+nlohmann::json to_json(const PhaseRecord& record, const fit::FitOptions& options,
+                       const fit::FitResult& r) {
+  const double f = record.rate_unit.to_si;
+  const std::string rate = unit_label(record);
+  const auto names = coefficient_units(rate);
+  nlohmann::json terms = nlohmann::json::object();
+  for (int j = 0; j < fit::kTermCount; ++j) {
+    const auto& c = coefficient(r.coefficients, j);
+    nlohmann::json t{{"value", num(c.value / f)}, {"unit", names[static_cast<std::size_t>(j)]},
+                     {"ci_low", num(c.ci_low / f)}, {"ci_high", num(c.ci_high / f)},
+                     {"identified", c.identified}, {"fitted", r.terms[j].fitted},
+                     {"estimate", num(r.terms[j].estimate / f)}};
+    if (!c.note.empty()) t["note"] = c.note;
+    if (r.terms[j].tau_max_s > 0) {
+      t["dominates_tau_s"] = {r.terms[j].tau_min_s, r.terms[j].tau_max_s};
+    }
+    if (gyro(record)) {
+      const auto& cu = customary(j);
+      t["customary"] = {{"value", num(c.value / cu.to_si)}, {"unit", cu.name},
+                        {"ci_low", num(c.ci_low / cu.to_si)}, {"ci_high", num(c.ci_high / cu.to_si)}};
+    }
+    terms[fit::term_name(j)] = std::move(t);
+  }
+  const auto& s = r.summary;
+  nlohmann::json residuals = nlohmann::json::array();
+  for (const auto& p : r.residuals) {
+    residuals.push_back({{"tau_s", p.tau_s}, {"adev", num(std::sqrt(p.avar) / f)},
+                         {"adev_model", num(std::sqrt(p.avar_model) / f)},
+                         {"normalized_residual", num(p.normalized)},
+                         {"dominant_term", p.dominant_term >= 0 ? nlohmann::json(fit::term_name(p.dominant_term))
+                                                                : nlohmann::json(nullptr)}});
+  }
+  nlohmann::json out{
+      {"unit", rate},
+      {"method", fit::method_name(options.method)},
+      {"level", options.level},
+      {"source", record.source},
+      {"rate_hz", record.rate_hz},
+      {"n_samples", record.n_samples},
+      {"terms", std::move(terms)},
+      {"paper", {{"tau_opt_s", num(r.tau_opt_s)},
+                 {"adev_min_eq2", num(std::sqrt(r.avar_min_eq2) / f)},
+                 {"adev_min_measured", num(std::sqrt(r.avar_min_measured) / f)},
+                 {"tau_min_measured_s", num(r.tau_min_measured_s)},
+                 {"note", "eqs. 1-2 use the fitted N and K only (white noise + rate random walk); "
+                          "the measured minimum includes every term"}}},
+      {"diagnostics", {{"termination", fit::termination_name(s.termination)},
+                       {"message", s.message},
+                       {"iterations", s.iterations},
+                       {"taus_used", s.points_used},
+                       {"chi2", num(s.chi2)},
+                       {"dof", s.dof},
+                       {"chi2_dof", num(s.chi2_dof)},
+                       {"warnings", s.warnings},
+                       {"residuals", std::move(residuals)}}}};
+  return out;
+}
+
+std::string to_table(const PhaseRecord& record, const fit::FitOptions& options,
+                     const fit::FitResult& r) {
+  const double f = record.rate_unit.to_si;
+  const auto names = coefficient_units(unit_label(record));
+  std::string out = fmt::format("# {}: {} samples at {:.9g} Hz; method {}, {:g}% intervals\n",
+                                record.source, record.n_samples, record.rate_hz,
+                                fit::method_name(options.method), 100 * options.level);
+  out += fmt::format("{:<4} {:>13} {:>13} {:>13} {:<18} {:>5}  {}\n", "term", "value", "ci_low",
+                     "ci_high", "unit", "ident", "customary");
+  for (int j = 0; j < fit::kTermCount; ++j) {
+    const auto& c = coefficient(r.coefficients, j);
+    std::string cust;
+    if (gyro(record)) {
+      const auto& cu = customary(j);
+      cust = fmt::format("{} [{}, {}] {}", cell(c.value / cu.to_si), cell(c.ci_low / cu.to_si),
+                         cell(c.ci_high / cu.to_si), cu.name);
+    }
+    out += fmt::format("{:<4} {:>13} {:>13} {:>13} {:<18} {:>5}  {}\n", fit::term_name(j),
+                       cell(c.value / f), cell(c.ci_low / f), cell(c.ci_high / f),
+                       names[static_cast<std::size_t>(j)],
+                       c.identified ? "yes" : "no", cust);
+  }
+  for (int j = 0; j < fit::kTermCount; ++j) {
+    const auto& c = coefficient(r.coefficients, j);
+    if (!c.note.empty()) out += fmt::format("# {}: {}\n", fit::term_name(j), c.note);
+  }
+  out += fmt::format("# paper eqs. 1-2: tau_opt = {:.6g} s, adev_min = {:.6g}; measured minimum "
+                     "{:.6g} at tau = {:.6g} s\n",
+                     r.tau_opt_s, std::sqrt(r.avar_min_eq2) / f, std::sqrt(r.avar_min_measured) / f,
+                     r.tau_min_measured_s);
+  out += "# " + r.summary.BriefReport() + "\n";
+  for (const auto& w : r.summary.warnings) out += "# warning: " + w + "\n";
+  out += fmt::format("{:>13} {:>13} {:>13} {:>9} {:>4}\n", "tau [s]", "adev", "model", "resid/sd",
+                     "term");
+  for (const auto& p : r.residuals) {
+    out += fmt::format("{:>13.6g} {:>13.6g} {:>13.6g} {:>+9.2f} {:>4}\n", p.tau_s,
+                       std::sqrt(p.avar) / f, std::sqrt(p.avar_model) / f, p.normalized,
+                       p.dominant_term >= 0 ? fit::term_name(p.dominant_term) : "-");
+  }
+  return out;
+}
+
+void run_fit(FitOptionsCli& options) {
+  if (options.format != "json" && options.format != "table") {
+    throw InputError("unknown --format '" + options.format + "'; use json or table");
+  }
+  fit::FitOptions fo;
+  fo.method = fit::parse_method(options.method);
+  fo.level = options.level;
+  fo.use_correlation = options.gls;
+  fo.min_dominant_taus = options.min_dominant_taus;
+  if (options.selection == "none") {
+    fo.selection = fit::Selection::none;
+  } else if (options.selection == "aic") {
+    fo.selection = fit::Selection::aic;
+  } else if (options.selection == "bic") {
+    fo.selection = fit::Selection::bic;
+  } else {
+    throw InputError("unknown --selection '" + options.selection + "'; use none, aic or bic");
+  }
+  for (bool& t : fo.terms) t = false;
+  std::size_t start = 0;
+  while (start <= options.terms.size()) {
+    const std::size_t comma = std::min(options.terms.find(',', start), options.terms.size());
+    const std::string name = options.terms.substr(start, comma - start);
+    bool found = false;
+    for (int j = 0; j < fit::kTermCount; ++j) {
+      if (name == fit::term_name(j)) {
+        fo.terms[j] = true;
+        found = true;
+      }
+    }
+    if (!found) {
+      throw InputError("--terms: unknown term '" + name + "'; use a comma list of Q,N,B,K,R");
+    }
+    start = comma + 1;
+  }
+  std::string why;
+  if (!fo.IsValid(&why)) throw InputError("fit options: " + why);
+
+  const PhaseRecord record = load_phase(options.input);
+  const double tau0_s = 1.0 / record.rate_hz;
+  auto warnings = fit::record_warnings(record.phase_si, tau0_s);
+  if (fit::is_constant_record(record.phase_si, tau0_s)) {
+    throw InputError(record.source + ": the rate is constant (all-zero or a fixed value): there is "
+                     "no noise to identify; check --column and the file");
+  }
+  const auto factors = estimator_averaging_factors(Estimator::oadev, parse_tau_grid(options.taus),
+                                                   record.rate_hz, record.phase_si.size());
+  const auto points = oadev(record.phase_si, tau0_s, factors);
+  fit::FitResult result = fit::fit_allan(points, record.phase_si.size(), tau0_s, fo);
+  result.summary.warnings.insert(result.summary.warnings.begin(), warnings.begin(), warnings.end());
+  if (result.summary.termination == fit::Termination::degenerate_input ||
+      result.summary.termination == fit::Termination::too_few_points) {
+    throw InputError(record.source + ": cannot fit a noise model: " + result.summary.message);
+  }
+  result.coefficients.quantity = record.rate_unit.quantity == Quantity::acceleration
+                                     ? Quantity::acceleration
+                                     : Quantity::angular_rate;
+
+  nlohmann::json json = to_json(record, fo, result);
+  options.spec.force = options.output.force;
+  json["spec_comparison"] = run_spec_exports(options.spec, result.coefficients, record.rate_hz);
+  std::string text;
+  if (options.format == "json") {
+    text = json.dump(1) + "\n";
+  } else {
+    text = to_table(record, fo, result) + format_spec_table(json["spec_comparison"]);
+    if (!text.empty() && text.back() != '\n') text += '\n';
+  }
+  write_output(options.output, text);
+  for (const auto& w : result.summary.warnings) fmt::print(stderr, "imunoise: warning: {}\n", w);
+}
+
+}  // namespace
+
+void setup_fit(CLI::App& app) {
+  auto options = std::make_shared<FitOptionsCli>();
+  auto* command = app.add_subcommand(
+      "fit", "noise-model coefficients (Q, N, B, K, R) with confidence intervals and diagnostics");
+  add_input_options(*command, options->input);
+  command->add_option("--method", options->method,
+                      "wls (weighted NNLS, default), ols (the paper's least squares), slope "
+                      "(IEEE 952 read-off)")
+      ->capture_default_str();
+  command->add_option("--terms", options->terms,
+                      "terms to fit, comma list of Q,N,B,K,R (R only on request)")
+      ->capture_default_str();
+  command->add_option("--taus", options->taus, "tau grid of the Allan curve: octave, decade, "
+                                               "perdecade:K, ... (as dev)")
+      ->capture_default_str();
+  command->add_option("--level", options->level, "confidence level of the intervals")
+      ->capture_default_str()
+      ->check(CLI::Range(0.5, 0.999));
+  command->add_option("--selection", options->selection,
+                      "wls model selection among the terms: none, aic, bic")
+      ->capture_default_str();
+  command->add_option("--min-dominant-taus", options->min_dominant_taus,
+                      "wls: taus a term must dominate to stay in the fit")
+      ->capture_default_str()
+      ->check(CLI::Range(0, 100));
+  command->add_flag("--gls", options->gls,
+                    "wls: whiten with the full correlation of the overlapping estimates "
+                    "(generalised least squares) instead of the diagonal");
+  command->add_option("--format", options->format, "json or table")->capture_default_str();
+  command->add_option("-o,--output", options->output.path, "write to FILE instead of standard output");
+  command->add_flag("--force", options->output.force, "replace existing output files");
+  add_spec_export_options(*command, options->spec);
+  command->callback([options] { run_fit(*options); });
+}
+
+}  // namespace imunoise::cli

@@ -1,0 +1,194 @@
+#include "spec_exports.hpp"
+
+#include <fmt/core.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "imunoise/error.hpp"
+#include "imunoise/spec/exports.hpp"
+#include "output.hpp"
+
+namespace imunoise::cli {
+
+void add_spec_export_options(CLI::App& app, SpecExportOptions& options) {
+  std::string names;
+  for (const auto& name : builtin_spec_names()) names += (names.empty() ? "" : ", ") + name;
+  app.add_option(
+      "--spec", options.spec,
+      "Compare with a datasheet: built-in name (" + names + ") or YAML spec file (docs/spec.md)");
+  app.add_option("--kalibr", options.kalibr_path,
+                 "Write a Kalibr imu.yaml (noise density N in rad/s/sqrt(Hz), random walk K in "
+                 "rad/s^2/sqrt(Hz)) to FILE");
+  app.add_option("--kf-json", options.kf_json_path,
+                 "Write Kalman-filter noise parameters (white-noise PSD, Gauss-Markov sigma and "
+                 "T_c, random-walk PSD; SI, units in the file) to FILE as JSON");
+  app.add_option("--inflation", options.inflation,
+                 "Multiply the Kalibr noise values by X (recorded in the file; default 1)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--kalibr-topic", options.kalibr_topic, "rostopic written to the Kalibr file")
+      ->capture_default_str();
+}
+
+Spec resolve_spec(const std::string& name_or_path) {
+  for (const auto& name : builtin_spec_names()) {
+    if (name == name_or_path) return builtin_spec(name);
+  }
+  std::error_code ec;
+  if (std::filesystem::exists(name_or_path, ec)) return load_spec_file(name_or_path);
+  std::string names;
+  for (const auto& name : builtin_spec_names()) names += (names.empty() ? "" : ", ") + name;
+  throw InputError("--spec '" + name_or_path + "': neither a built-in spec (" + names +
+                   ") nor an existing file; fix: pass a built-in name or the path of a YAML spec "
+                   "file (format: docs/spec.md, example: examples/specs/tg100.yaml)");
+}
+
+namespace {
+
+nlohmann::json number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+nlohmann::json value_json(const ValueInUnit& v) {
+  return {{"value", number(v.value)},
+          {"ci_low", number(v.ci_low)},
+          {"ci_high", number(v.ci_high)},
+          {"unit", v.unit}};
+}
+
+void check_target(const std::string& option, const std::string& path, bool force) {
+  if (path == "-") {
+    throw InputError(option +
+                     " -: the export needs a file name (standard output carries the "
+                     "command's report); fix: pass " +
+                     option + " FILE");
+  }
+  std::error_code ec;
+  if (std::filesystem::exists(path, ec) && !force) {
+    throw InputError(path + ": file exists; imunoise does not overwrite it — choose another " +
+                     option + " name or pass --force");
+  }
+}
+
+}  // namespace
+
+nlohmann::json spec_comparison_json(const SpecComparison& comparison) {
+  nlohmann::json j;
+  j["spec"] = comparison.spec_name;
+  j["source"] = comparison.spec_source;
+  j["sensor"] = std::string(sensor_kind_name(comparison.sensor));
+  j["confidence_level"] = comparison.confidence_level;
+  j["rule"] =
+      "pass if measured <= spec * (1 + tolerance); deviation_percent = "
+      "100 * (measured / spec - 1); conclusive if the whole confidence interval lies "
+      "on the verdict's side of the limit";
+  j["all_pass"] = comparison.all_pass;
+  auto terms = nlohmann::json::array();
+  for (const auto& r : comparison.rows) {
+    nlohmann::json t;
+    t["term"] = r.term;
+    t["symbol"] = std::string(1, r.symbol);
+    t["title"] = r.title;
+    t["identified"] = r.identified;
+    t["measured"] = value_json(r.measured_si);
+    t["measured_customary"] = value_json(r.measured_customary);
+    if (r.verdict != Verdict::not_in_spec) {
+      t["measured_in_spec_unit"] = value_json(r.measured_spec_unit);
+      t["spec"] = {{"value", number(r.spec_value)},
+                   {"unit", r.spec_unit},
+                   {"psd", r.psd},
+                   {"tolerance", r.tolerance},
+                   {"limit", number(r.spec_value * (1.0 + r.tolerance))}};
+      t["spec_si"] = {{"value", number(r.spec_si)},
+                      {"limit", number(r.limit_si)},
+                      {"unit", r.measured_si.unit}};
+    }
+    t["deviation_percent"] = number(r.deviation_percent);
+    t["verdict"] = std::string(verdict_name(r.verdict));
+    t["ci_vs_limit"] = std::string(ci_position_name(r.ci_position));
+    t["conclusive"] = r.conclusive;
+    if (!r.note.empty()) t["note"] = r.note;
+    terms.push_back(std::move(t));
+  }
+  j["terms"] = std::move(terms);
+  return j;
+}
+
+std::string format_spec_table(const nlohmann::json& c) {
+  if (c.is_null()) return "";
+  const auto text = [](const nlohmann::json& v) {
+    if (!v.is_object() || v["value"].is_null()) return std::string("-");
+    return fmt::format("{:.4g} {}", v["value"].get<double>(), v["unit"].get<std::string>());
+  };
+  std::string out = fmt::format(
+      "datasheet comparison: {} ({}), {:g} % CI; pass if measured <= "
+      "spec x (1 + tolerance)\n",
+      c["spec"].get<std::string>(), c["source"].get<std::string>(),
+      100.0 * c["confidence_level"].get<double>());
+  out = fmt::format("{}{:<22} {:>24} {:>24} {:>22} {:>10} {:>10} {}\n", out, "term", "measured",
+                    "in spec unit", "spec", "deviation", "CI/limit", "verdict");
+  for (const auto& t : c["terms"]) {
+    std::string spec = "-";
+    if (t.contains("spec")) {
+      spec = text(t["spec"]);
+      if (t["spec"]["tolerance"].get<double>() != 0.0) {
+        spec += fmt::format(" +{:g}%", 100.0 * t["spec"]["tolerance"].get<double>());
+      }
+    }
+    const std::string deviation =
+        t["deviation_percent"].is_null()
+            ? std::string("-")
+            : fmt::format("{:+.1f} %", t["deviation_percent"].get<double>());
+    std::string verdict = t["verdict"].get<std::string>();
+    const bool judged = verdict == "pass" || verdict == "fail";
+    if (judged) verdict += t["conclusive"].get<bool>() ? " (conclusive)" : " (inconclusive)";
+    out += fmt::format(
+        "{:<22} {:>24} {:>24} {:>22} {:>10} {:>10} {}\n",
+        fmt::format("{} {}", t["symbol"].get<std::string>(), t["title"].get<std::string>()),
+        text(t["measured_customary"]),
+        t.contains("measured_in_spec_unit") ? text(t["measured_in_spec_unit"]) : "-", spec,
+        deviation, judged ? t["ci_vs_limit"].get<std::string>() : "-", verdict);
+  }
+  return out;
+}
+
+std::string format_spec_table(const SpecComparison& comparison) {
+  return format_spec_table(spec_comparison_json(comparison));
+}
+
+nlohmann::json run_spec_exports(const SpecExportOptions& options,
+                                const NoiseCoefficients& coefficients, double rate_hz) {
+  // Everything that can fail is checked before anything is written.
+  std::optional<Spec> spec;
+  if (!options.spec.empty()) spec = resolve_spec(options.spec);
+  if (!options.kalibr_path.empty()) {
+    check_target("--kalibr", options.kalibr_path, options.force);
+    if (coefficients.quantity != Quantity::angular_rate) {
+      throw InputError("--kalibr: the fit is of " +
+                       std::string(quantity_name(coefficients.quantity)) +
+                       "; the Kalibr file is written from a gyro fit (its accelerometer keys are "
+                       "left as placeholders); fix: run the fit on a gyro channel");
+    }
+  }
+  if (!options.kf_json_path.empty()) check_target("--kf-json", options.kf_json_path, options.force);
+  if (!options.kalibr_path.empty() && options.kalibr_path == options.kf_json_path) {
+    throw InputError("--kalibr and --kf-json name the same file '" + options.kalibr_path +
+                     "'; fix: give two different file names");
+  }
+  nlohmann::json comparison = nullptr;
+  if (spec) comparison = spec_comparison_json(compare(coefficients, *spec));
+  std::string kalibr_text;
+  std::string kf_text;
+  if (!options.kalibr_path.empty()) {
+    kalibr_text =
+        kalibr_imu_yaml(coefficients, nullptr, rate_hz, options.inflation, options.kalibr_topic);
+  }
+  if (!options.kf_json_path.empty()) {
+    kf_text = kalman_parameters(coefficients, rate_hz).dump(1) + "\n";
+  }
+  if (!kalibr_text.empty()) write_output({options.kalibr_path, options.force}, kalibr_text);
+  if (!kf_text.empty()) write_output({options.kf_json_path, options.force}, kf_text);
+  return comparison;
+}
+
+}  // namespace imunoise::cli

@@ -1,0 +1,53 @@
+#pragma once
+// Datasheet comparison and noise-model exports for the commands that produce noise
+// coefficients (fit, analyze): options --spec, --kalibr, --kf-json, --inflation, --kalibr-topic.
+//
+// Use from a command:
+//   SpecExportOptions spec_options;                 // member of the command's options
+//   add_spec_export_options(*sub, spec_options);    // in setup_<cmd>
+//   spec_options.force = output.force;              // the command's own --force (not added here)
+//   json["spec_comparison"] = run_spec_exports(spec_options, coefficients, rate_hz);
+//   table += format_spec_table(json["spec_comparison"]);   // for --format table
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "imunoise/noise_coefficients.hpp"
+#include "imunoise/spec/comparison.hpp"
+#include "imunoise/spec/spec.hpp"
+
+namespace imunoise::cli {
+
+struct SpecExportOptions {
+  std::string spec;          ///< --spec NAME|FILE: built-in name (tg100) or YAML file; empty: none
+  std::string kalibr_path;   ///< --kalibr FILE: write a Kalibr imu.yaml; empty: none
+  std::string kf_json_path;  ///< --kf-json FILE: write Kalman-filter parameters; empty: none
+  double inflation = 1.0;    ///< --inflation X: factor on the Kalibr values (> 0)
+  std::string kalibr_topic = "/imu0";  ///< --kalibr-topic TOPIC: rostopic written to imu.yaml
+  bool force = false;                  ///< replace existing files; NOT registered here: copy the
+                                       ///< command's own --force into it before run_spec_exports
+};
+
+/// Registers --spec, --kalibr, --kf-json, --inflation and --kalibr-topic on `app`.
+void add_spec_export_options(CLI::App& app, SpecExportOptions& options);
+
+/// A built-in spec name or a spec file path. Throws InputError when it is neither.
+Spec resolve_spec(const std::string& name_or_path);
+
+/// Writes the requested export files (never replacing an existing file unless options.force;
+/// all targets are checked before any is written) and returns the datasheet comparison as
+/// JSON (null when no --spec was given). Throws InputError for a bad spec, a spec of another
+/// sensor kind, an existing output, or a Kalibr export of an accelerometer fit.
+/// @param rate_hz sample rate of the record (Hz), for update_rate and the discrete values
+nlohmann::json run_spec_exports(const SpecExportOptions& options,
+                                const NoiseCoefficients& coefficients, double rate_hz);
+
+/// The comparison as JSON (the object run_spec_exports returns).
+nlohmann::json spec_comparison_json(const SpecComparison& comparison);
+
+/// A plain-text table of the comparison: term, measured, spec, deviation, CI vs limit,
+/// verdict. Takes the JSON of spec_comparison_json / run_spec_exports; "" for null.
+std::string format_spec_table(const nlohmann::json& comparison);
+std::string format_spec_table(const SpecComparison& comparison);
+
+}  // namespace imunoise::cli

@@ -1,0 +1,777 @@
+// Noise-model identification (see include/imunoise/fit/fit.hpp and docs/fit.md).
+#include "imunoise/fit/fit.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <boost/math/distributions/normal.hpp>
+#include <cstdarg>
+#include <cstdio>
+
+#include "imunoise/allan.hpp"
+#include "imunoise/confidence/edf.hpp"
+#include "imunoise/confidence/interval.hpp"
+#include "imunoise/error.hpp"
+
+namespace imunoise::fit {
+namespace {
+
+// printf-style formatting (the library does not depend on fmt).
+std::string strf(const char* format, ...) __attribute__((format(printf, 1, 2)));
+std::string strf(const char* format, ...) {
+  char buffer[1024];
+  va_list args;
+  va_start(args, format);
+  std::vsnprintf(buffer, sizeof buffer, format, args);
+  va_end(args);
+  return buffer;
+}
+
+constexpr double kFloor = 2.0 * std::numbers::ln2 / std::numbers::pi;  // B^2 -> sigma^2 floor
+
+using Matrix = Eigen::MatrixXd;
+using Vector = Eigen::VectorXd;
+
+double normal_quantile(double level) {
+  const boost::math::normal_distribution<double> normal;
+  return boost::math::quantile(normal, 0.5 + 0.5 * level);
+}
+
+struct Curve {
+  std::vector<std::size_t> m;
+  std::vector<double> tau;
+  std::vector<double> avar;
+  std::vector<double> dev;
+};
+
+Matrix design(const Curve& c) {
+  Matrix g(static_cast<Eigen::Index>(c.tau.size()), kTermCount);
+  for (std::size_t i = 0; i < c.tau.size(); ++i) {
+    for (int j = 0; j < kTermCount; ++j) g(static_cast<Eigen::Index>(i), j) = term_basis(j, c.tau[i]);
+  }
+  return g;
+}
+
+/// Least squares on the listed columns of (already whitened) a, b; column-scaled QR.
+Vector subset_ls(const Matrix& a, const Vector& b, const std::vector<int>& cols, double* rss) {
+  Matrix sub(a.rows(), static_cast<Eigen::Index>(cols.size()));
+  Vector scale(static_cast<Eigen::Index>(cols.size()));
+  for (std::size_t c = 0; c < cols.size(); ++c) {
+    const auto ci = static_cast<Eigen::Index>(c);
+    const double nrm = a.col(cols[c]).norm();
+    scale(ci) = nrm > 0 ? 1.0 / nrm : 1.0;
+    sub.col(ci) = a.col(cols[c]) * scale(ci);
+  }
+  const Eigen::ColPivHouseholderQR<Matrix> qr(sub);
+  Vector x = qr.solve(b);
+  if (rss != nullptr) *rss = (sub * x - b).squaredNorm();
+  return x.cwiseProduct(scale);
+}
+
+/// Non-negative least squares by enumeration of the free sets (5 terms: at most 31 solves),
+/// with model selection: the chosen set minimises rss + penalty * |set| (rss of the whitened
+/// system = chi^2; penalty ln(k) is the Bayesian information criterion, 0 plain NNLS).
+/// Returns theta (zeros outside the set) and the set.
+Vector nnls(const Matrix& a, const Vector& b, const std::vector<int>& fitted,
+            std::vector<int>* free_set, double penalty) {
+  const int nf = static_cast<int>(fitted.size());
+  double best = std::numeric_limits<double>::infinity();
+  Vector best_theta = Vector::Zero(kTermCount);
+  free_set->clear();
+  for (int mask = 1; mask < (1 << nf); ++mask) {
+    std::vector<int> cols;
+    for (int t = 0; t < nf; ++t) {
+      if ((mask >> t) & 1) cols.push_back(fitted[static_cast<std::size_t>(t)]);
+    }
+    if (static_cast<Eigen::Index>(cols.size()) > a.rows()) continue;
+    double rss = 0.0;
+    const Vector x = subset_ls(a, b, cols, &rss);
+    if ((x.array() <= 0.0).any() || !x.allFinite()) continue;
+    rss += penalty * static_cast<double>(cols.size());
+    if (rss < best * (1.0 - 1e-12)) {
+      best = rss;
+      best_theta.setZero();
+      for (std::size_t c = 0; c < cols.size(); ++c) best_theta(cols[c]) = x(static_cast<Eigen::Index>(c));
+      *free_set = cols;
+    }
+  }
+  return best_theta;
+}
+
+Matrix to_matrix(const std::vector<double>& v, std::size_t k) {
+  Matrix m(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k));
+  for (std::size_t i = 0; i < k; ++i) {
+    for (std::size_t j = 0; j < k; ++j) m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = v[i * k + j];
+  }
+  return m;
+}
+
+/// Whitening transform W with W Sigma W' = I (W = L^-1 D^-1, D = diag sqrt(Sigma_ii)).
+Matrix whitener(const Matrix& sigma, bool full) {
+  const Vector d = sigma.diagonal().cwiseMax(std::numeric_limits<double>::min()).cwiseSqrt();
+  if (!full) return d.cwiseInverse().asDiagonal();
+  Matrix r = d.cwiseInverse().asDiagonal() * sigma * d.cwiseInverse().asDiagonal();
+  r.diagonal().array() += 1e-9;
+  const Eigen::LLT<Matrix> llt(r);
+  if (llt.info() != Eigen::Success) return d.cwiseInverse().asDiagonal();
+  const Matrix linv = llt.matrixL().solve(Matrix::Identity(r.rows(), r.cols()));
+  return linv * d.cwiseInverse().asDiagonal();
+}
+
+/// Covariance of the linear estimator x = A y restricted to cols, given Cov(y) = sigma:
+/// A = (G'W'WG)^-1 G'W'W. With W the full whitener this is (G' Sigma^-1 G)^-1.
+Matrix estimator_covariance(const Matrix& g, const Matrix& w, const Matrix& sigma,
+                            const std::vector<int>& cols) {
+  Matrix gs(g.rows(), static_cast<Eigen::Index>(cols.size()));
+  for (std::size_t c = 0; c < cols.size(); ++c) gs.col(static_cast<Eigen::Index>(c)) = g.col(cols[c]);
+  const Matrix wg = w * gs;
+  // Scale columns for conditioning.
+  Vector scale(gs.cols());
+  for (Eigen::Index c = 0; c < gs.cols(); ++c) {
+    const double nrm = wg.col(c).norm();
+    scale(c) = nrm > 0 ? 1.0 / nrm : 1.0;
+  }
+  const Matrix wgs = wg * scale.asDiagonal();
+  const Matrix normal = wgs.transpose() * wgs;
+  const Eigen::CompleteOrthogonalDecomposition<Matrix> cod(normal);
+  const Matrix ninv = cod.pseudoInverse();
+  const Matrix a = ninv * wgs.transpose() * w;  // scaled coefficients per y
+  const Matrix cov_scaled = a * sigma * a.transpose();
+  return scale.asDiagonal() * cov_scaled * scale.asDiagonal();
+}
+
+double model_avar(const double* theta, double tau) {
+  double s = 0.0;
+  for (int j = 0; j < kTermCount; ++j) s += theta[j] * term_basis(j, tau);
+  return s;
+}
+
+Coefficient& coefficient_of(NoiseCoefficients& c, int term) {
+  switch (term) {
+    case kQ: return c.quantization;
+    case kN: return c.random_walk;
+    case kB: return c.bias_instability;
+    case kK: return c.rate_random_walk;
+    default: return c.rate_ramp;
+  }
+}
+
+int dominant(const double* theta, double tau) {
+  int best = -1;
+  double best_v = 0.0;
+  for (int j = 0; j < kTermCount; ++j) {
+    const double v = theta[j] * term_basis(j, tau);
+    if (v > best_v) {
+      best_v = v;
+      best = j;
+    }
+  }
+  return best;
+}
+
+/// Noise type alpha of each term for the EDF (R has none; random-walk FM is used).
+int term_alpha(int term) {
+  switch (term) {
+    case kQ: return 2;
+    case kN: return 0;
+    case kB: return -1;
+    default: return -2;
+  }
+}
+
+double selection_penalty(const FitOptions& options, std::size_t k) {
+  switch (options.selection) {
+    case Selection::none: return 0.0;
+    case Selection::aic: return 2.0;
+    case Selection::bic: return std::log(static_cast<double>(k));
+  }
+  return 0.0;
+}
+
+/// Local log-log slope of sigma(tau) at point i (from its neighbours).
+double local_slope(const Curve& c, std::size_t i) {
+  const std::size_t a = i == 0 ? 0 : i - 1;
+  const std::size_t b = std::min(i + 1, c.tau.size() - 1);
+  if (a == b) return 0.0;
+  return 0.5 * std::log(c.avar[b] / c.avar[a]) / std::log(c.tau[b] / c.tau[a]);
+}
+
+constexpr double kTermSlope[kTermCount] = {-1.0, -0.5, 0.0, 0.5, 1.0};
+
+void fill_common(FitResult& result, const Curve& curve, const std::vector<double>& sd) {
+  const double* th = nullptr;
+  double theta[kTermCount];
+  for (int j = 0; j < kTermCount; ++j) theta[j] = std::max(0.0, result.terms[j].theta);
+  th = theta;
+  result.residuals.clear();
+  for (int j = 0; j < kTermCount; ++j) {
+    result.terms[j].tau_min_s = 0.0;
+    result.terms[j].tau_max_s = 0.0;
+  }
+  for (std::size_t i = 0; i < curve.tau.size(); ++i) {
+    TauResidual r;
+    r.tau_s = curve.tau[i];
+    r.avar = curve.avar[i];
+    r.avar_model = model_avar(th, curve.tau[i]);
+    r.sd_model = i < sd.size() ? sd[i] : 0.0;
+    r.normalized = r.sd_model > 0 ? (r.avar - r.avar_model) / r.sd_model : 0.0;
+    r.dominant_term = dominant(th, curve.tau[i]);
+    if (r.dominant_term >= 0) {
+      auto& t = result.terms[r.dominant_term];
+      if (t.tau_min_s == 0.0) t.tau_min_s = r.tau_s;
+      t.tau_max_s = r.tau_s;
+    }
+    result.residuals.push_back(r);
+  }
+  const double n = result.coefficients.random_walk.value;
+  const double k = result.coefficients.rate_random_walk.value;
+  if (n > 0 && k > 0) {
+    result.tau_opt_s = std::sqrt(3.0) * n / k;
+    result.avar_min_eq2 = 2.0 * n * k / std::sqrt(3.0);
+  }
+  const auto it = std::min_element(curve.avar.begin(), curve.avar.end());
+  result.avar_min_measured = *it;
+  result.tau_min_measured_s = curve.tau[static_cast<std::size_t>(it - curve.avar.begin())];
+}
+
+}  // namespace
+
+std::string method_name(Method method) {
+  switch (method) {
+    case Method::wls: return "wls";
+    case Method::ols: return "ols";
+    case Method::slope: return "slope";
+  }
+  return "?";
+}
+
+Method parse_method(std::string_view text) {
+  if (text == "wls") return Method::wls;
+  if (text == "ols") return Method::ols;
+  if (text == "slope") return Method::slope;
+  throw InputError("unknown fit method '" + std::string(text) + "'; use wls, ols or slope");
+}
+
+const char* term_name(int term) {
+  static const char* names[kTermCount] = {"Q", "N", "B", "K", "R"};
+  return term >= 0 && term < kTermCount ? names[term] : "?";
+}
+
+double term_basis(int term, double tau_s) {
+  switch (term) {
+    case kQ: return 3.0 / (tau_s * tau_s);
+    case kN: return 1.0 / tau_s;
+    case kB: return kFloor;
+    case kK: return tau_s / 3.0;
+    case kR: return 0.5 * tau_s * tau_s;
+    default: return 0.0;
+  }
+}
+
+std::string termination_name(Termination termination) {
+  switch (termination) {
+    case Termination::converged: return "converged";
+    case Termination::no_convergence: return "no_convergence";
+    case Termination::too_few_points: return "too_few_points";
+    case Termination::degenerate_input: return "degenerate_input";
+  }
+  return "?";
+}
+
+bool FitOptions::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& why) {
+    if (error != nullptr) *error = why;
+    return false;
+  };
+  if (!(level > 0.0 && level < 1.0)) return fail("level must be in (0, 1)");
+  if (max_iterations < 1) return fail("max_iterations must be >= 1");
+  if (!(parameter_tolerance > 0.0)) return fail("parameter_tolerance must be > 0");
+  bool any = false;
+  for (bool t : terms) any = any || t;
+  if (!any) return fail("at least one term must be fitted");
+  return true;
+}
+
+std::string FitSummary::BriefReport() const {
+  return strf("fit: %s after %d iteration(s), %zu taus, chi2/dof = %.3g (%zu dof)",
+              termination_name(termination).c_str(), iterations, points_used, chi2_dof, dof);
+}
+
+std::string FitSummary::FullReport() const {
+  std::string out = BriefReport() + "\n";
+  if (!message.empty()) out += message + "\n";
+  for (const auto& w : warnings) out += "warning: " + w + "\n";
+  return out;
+}
+
+FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase, double tau0_s,
+                    const FitOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("fit options: " + why);
+  if (!(tau0_s > 0.0) || !std::isfinite(tau0_s)) throw InputError("fit: tau0 must be positive");
+  FitResult result;
+  result.coefficients.confidence_level = options.level;
+  auto& summary = result.summary;
+  for (int j = 0; j < kTermCount; ++j) {
+    result.terms[j].fitted = options.terms[j];
+    auto& c = coefficient_of(result.coefficients, j);
+    c = Coefficient{};
+    c.note = options.terms[j] ? "" : "not fitted";
+  }
+
+  Curve curve;
+  for (const auto& p : oadev_points) {
+    if (!std::isfinite(p.dev) || p.m == 0 || 2 * p.m >= n_phase) continue;
+    curve.m.push_back(p.m);
+    curve.tau.push_back(p.tau_s);
+    curve.dev.push_back(p.dev);
+    curve.avar.push_back(p.dev * p.dev);
+  }
+  std::vector<int> fitted;
+  for (int j = 0; j < kTermCount; ++j) {
+    if (options.terms[j]) fitted.push_back(j);
+  }
+  summary.points_used = curve.tau.size();
+  auto nothing = [&](Termination t, const std::string& msg) {
+    summary.termination = t;
+    summary.message = msg;
+    for (int j : fitted) coefficient_of(result.coefficients, j).note = msg;
+    return result;
+  };
+  if (curve.tau.empty()) return nothing(Termination::too_few_points, "no usable tau in the curve");
+  const double peak = *std::max_element(curve.avar.begin(), curve.avar.end());
+  if (!(peak > 0.0)) {
+    return nothing(Termination::degenerate_input,
+                   "the Allan variance is zero at every tau (all-zero or constant data): no noise "
+                   "to identify");
+  }
+  if (std::any_of(curve.avar.begin(), curve.avar.end(), [](double v) { return v <= 0.0; })) {
+    // Zero variance at some tau (e.g. a quantized record that never changes at short tau).
+    summary.warnings.push_back("the Allan variance is zero at some taus; those taus were dropped");
+    Curve kept;
+    for (std::size_t i = 0; i < curve.tau.size(); ++i) {
+      if (curve.avar[i] > 0.0) {
+        kept.m.push_back(curve.m[i]);
+        kept.tau.push_back(curve.tau[i]);
+        kept.dev.push_back(curve.dev[i]);
+        kept.avar.push_back(curve.avar[i]);
+      }
+    }
+    curve = std::move(kept);
+    summary.points_used = curve.tau.size();
+  }
+  if (curve.tau.size() < fitted.size() + 1 && options.method != Method::slope) {
+    return nothing(Termination::too_few_points,
+                   strf("%zu taus are too few to fit %zu terms (need at least %zu); use a "
+                        "denser tau grid or a longer record",
+                        curve.tau.size(), fitted.size(), fitted.size() + 1));
+  }
+  if (curve.tau.size() < 3 && options.method == Method::slope) {
+    return nothing(Termination::too_few_points, "the slope method needs at least 3 taus");
+  }
+
+  const auto k = curve.tau.size();
+  const Matrix g = design(curve);
+  const Vector y = Eigen::Map<const Vector>(curve.avar.data(), static_cast<Eigen::Index>(k));
+  const double z = normal_quantile(options.level);
+  std::vector<double> sd_points(k, 0.0);
+
+  if (options.method == Method::slope) {
+    // Tangent read-off: theta_j = min_i avar_i / g_j(tau_i).
+    for (int j : fitted) {
+      std::size_t best = 0;
+      double best_v = std::numeric_limits<double>::infinity();
+      for (std::size_t i = 0; i < k; ++i) {
+        // Only taus with at least 4 rough degrees of freedom (N/m >= 5): a tangent to the
+        // last, nearly single-cluster points reads noise, not the curve.
+        if (ieee952_edf(curve.m[i], n_phase) < 4.0 && i > 0) continue;
+        const double v = curve.avar[i] / term_basis(j, curve.tau[i]);
+        if (v < best_v) {
+          best_v = v;
+          best = i;
+        }
+      }
+      auto& t = result.terms[j];
+      t.theta = best_v;
+      t.estimate = std::sqrt(best_v);
+      Edf e = edf(Estimator::oadev, term_alpha(j), curve.m[best], n_phase);
+      double dof = e.value;
+      if (!std::isfinite(dof) || dof <= 0) dof = std::max(1.0, ieee952_edf(curve.m[best], n_phase));
+      const auto ci = chi2_interval(curve.dev[best], dof, options.level);
+      const double scale = 1.0 / std::sqrt(term_basis(j, curve.tau[best]));
+      t.theta_sd = best_v * std::sqrt(2.0 / dof);
+      auto& c = coefficient_of(result.coefficients, j);
+      const double slope = local_slope(curve, best);
+      const bool seen = std::abs(slope - kTermSlope[j]) < 0.25;
+      if (seen) {
+        c.value = t.estimate;
+        c.ci_low = ci.low * scale;
+        c.ci_high = ci.high * scale;
+        c.identified = true;
+      } else {
+        c.value = 0.0;
+        c.ci_low = 0.0;
+        c.ci_high = ci.high * scale;
+        c.identified = false;
+        c.note = strf("the curve never shows the slope %+g of this term (local slope %+.2f "
+                      "at the tangent point tau = %.4g s): upper limit only",
+                      kTermSlope[j], slope, curve.tau[best]);
+      }
+    }
+    summary.termination = Termination::converged;
+    summary.iterations = 1;
+    summary.message = "slope read-off (IEEE 952 tangents); intervals from the chi-squared "
+                      "interval of each tangent point";
+    // Residual scale from the EDF of the model noise type at each tau.
+    double theta[kTermCount];
+    for (int j = 0; j < kTermCount; ++j) theta[j] = result.terms[j].fitted ? result.terms[j].theta : 0.0;
+    for (std::size_t i = 0; i < k; ++i) {
+      const double v = model_avar(theta, curve.tau[i]);
+      sd_points[i] = v * std::sqrt(2.0 / std::max(1.0, ieee952_edf(curve.m[i], n_phase)));
+    }
+    fill_common(result, curve, sd_points);
+    return result;
+  }
+
+  // wls / ols.
+  const std::vector<double> theta_zero(kTermCount, 0.0);
+  Vector theta = Vector::Zero(kTermCount);
+  std::vector<int> free_set;
+  std::vector<int> dropped_terms;
+  Matrix sigma(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k));
+  const CovarianceBasis basis(curve.m, n_phase, tau0_s);
+  auto model_sigma = [&](const Vector& th) {
+    std::vector<double> t(kTermCount);
+    for (int j = 0; j < kTermCount; ++j) t[static_cast<std::size_t>(j)] = std::max(0.0, th(j));
+    Matrix m = to_matrix(basis.covariance(t), k);
+    // A deterministic model error floor keeps Sigma positive definite when only R (which has no
+    // variance) is present.
+    m.diagonal() += (1e-12 * (g * th.cwiseMax(0.0))).cwiseAbs2();
+    return m;
+  };
+
+  if (options.method == Method::ols) {
+    theta.setZero();
+    const Vector x = subset_ls(g, y, fitted, nullptr);
+    for (std::size_t c = 0; c < fitted.size(); ++c) theta(fitted[c]) = x(static_cast<Eigen::Index>(c));
+    free_set = fitted;
+    Vector pos = theta.cwiseMax(0.0);
+    if (pos.isZero()) pos = Vector::Constant(kTermCount, 0.0), pos(kN) = y(0) * curve.tau[0];
+    sigma = model_sigma(pos);
+    summary.iterations = 1;
+    summary.termination = Termination::converged;
+    summary.message = "ordinary least squares on sigma^2(tau) (the paper's method); covariance "
+                      "by the sandwich with the model covariance of the curve";
+  } else {
+    // Start: diagonal weights from the estimate itself (IEEE 952 rough EDF).
+    sigma = Matrix::Zero(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k));
+    for (std::size_t i = 0; i < k; ++i) {
+      const double e = std::max(1.0, ieee952_edf(curve.m[i], n_phase));
+      sigma(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)) = 2.0 * curve.avar[i] * curve.avar[i] / e;
+    }
+    std::vector<int> active = fitted;
+    std::vector<int> dropped;
+    const Matrix sigma_start = sigma;
+    for (int round = 0; round < kTermCount; ++round) {
+      sigma = sigma_start;
+      bool first = true;
+      summary.termination = Termination::no_convergence;
+      for (int it = 0; it < options.max_iterations; ++it) {
+        const Matrix w = whitener(sigma, options.use_correlation && !first);
+        const double penalty = first ? 0.0 : selection_penalty(options, k);
+        const Vector next = nnls(w * g, w * y, active, &free_set, penalty);
+        summary.iterations = it + 1;
+        if (free_set.empty()) {
+          return nothing(Termination::degenerate_input, "no non-negative model fits the curve");
+        }
+        const Matrix next_sigma = model_sigma(next);
+        bool done = false;
+        if (!first) {
+          const Matrix cov = estimator_covariance(g, whitener(next_sigma, options.use_correlation),
+                                                  next_sigma, active);
+          done = true;
+          for (std::size_t c = 0; c < active.size(); ++c) {
+            const int j = active[c];
+            const double sdj = std::sqrt(std::max(0.0, cov(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c))));
+            if (std::abs(next(j) - theta(j)) > options.parameter_tolerance * std::max(sdj, 1e-300)) done = false;
+          }
+        }
+        theta = next;
+        sigma = next_sigma;
+        first = false;
+        if (done) {
+          summary.termination = Termination::converged;
+          break;
+        }
+      }
+
+      // Data sufficiency: a term that dominates the fitted model at fewer than
+      // min_dominant_taus taus cannot be told apart from its neighbours by this record; it is
+      // dropped and the others refitted.
+      std::vector<int> count(kTermCount, 0);
+      double th[kTermCount];
+      for (int j = 0; j < kTermCount; ++j) th[j] = std::max(0.0, theta(j));
+      for (double tau : curve.tau) {
+        const int d = dominant(th, tau);
+        if (d >= 0) ++count[static_cast<std::size_t>(d)];
+      }
+      int weakest = -1;
+      for (int j : free_set) {
+        if (count[static_cast<std::size_t>(j)] < options.min_dominant_taus &&
+            (weakest < 0 || count[static_cast<std::size_t>(j)] < count[static_cast<std::size_t>(weakest)])) {
+          weakest = j;
+        }
+      }
+      if (weakest < 0 || active.size() <= 1) break;
+      active.erase(std::find(active.begin(), active.end(), weakest));
+      dropped.push_back(weakest);
+    }
+    dropped_terms = dropped;
+    summary.message = options.use_correlation
+                          ? "non-negative generalised least squares on sigma^2(tau), weights and "
+                            "correlations from the fitted model (iterated)"
+                          : "non-negative weighted least squares on sigma^2(tau), weights from the "
+                            "fitted model (iterated); covariance by the sandwich with the full "
+                            "model covariance";
+    if (summary.termination == Termination::no_convergence) {
+      summary.message += "; did not converge in max_iterations: last iterate reported";
+    }
+  }
+
+  // Coefficient covariance: free terms from the free set; clamped ones from the full set.
+  const Matrix w = options.method == Method::ols
+                       ? Matrix(Matrix::Identity(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k)))
+                       : whitener(sigma, options.use_correlation);
+  const Matrix cov_free = estimator_covariance(g, w, sigma, free_set);
+  const Matrix cov_all = estimator_covariance(g, w, sigma, fitted);
+  const Vector theta_pos = theta.cwiseMax(0.0);
+  for (std::size_t c = 0; c < fitted.size(); ++c) {
+    const int j = fitted[c];
+    auto& t = result.terms[j];
+    t.theta = theta(j);
+    t.estimate = std::sqrt(std::max(0.0, theta(j)));
+    const auto pos = std::find(free_set.begin(), free_set.end(), j);
+    double var = 0.0;
+    if (pos != free_set.end()) {
+      const auto fi = static_cast<Eigen::Index>(pos - free_set.begin());
+      var = cov_free(fi, fi);
+    } else {
+      var = cov_all(static_cast<Eigen::Index>(c), static_cast<Eigen::Index>(c));
+    }
+    t.theta_sd = std::sqrt(std::max(0.0, var));
+    if (!std::isfinite(t.theta_sd)) t.theta_sd = 0.0;
+    auto& coef = coefficient_of(result.coefficients, j);
+    // Interval by test inversion: h is inside when |theta_j - h| <= z sd(h), sd(h) being the
+    // standard deviation of this estimator (the same weights) when the truth has theta_j = h
+    // (the variance of an Allan variance grows with the model, so the interval is skewed up).
+    std::vector<int> set = free_set;
+    if (pos == free_set.end()) set.push_back(j);
+    const auto j_in_set = static_cast<Eigen::Index>(std::find(set.begin(), set.end(), j) - set.begin());
+    auto sd_at = [&](double h) {
+      Vector th = theta_pos;
+      th(j) = h;
+      const Matrix cov = estimator_covariance(g, w, model_sigma(th), set);
+      return std::sqrt(std::max(0.0, cov(j_in_set, j_in_set)));
+    };
+    const double center = std::max(0.0, theta(j));
+    // Model of the estimate under a truth with theta_j = h: theta_hat = h X + e, X ~
+    // chi^2(nu_h)/nu_h (the part of the variance that grows with h, nu_h = 2 h^2 / (sd(h)^2 -
+    // s0^2)) and e ~ N(0, s0^2) the noise of the other terms (s0 = sd(0)); the chi-squared and
+    // normal half-widths are added in quadrature. h is inside the interval when theta_hat is
+    // within the level-L range of that model (test inversion).
+    const double s0 = sd_at(0.0);
+    const double tail = 0.5 * (1.0 - options.level);
+    auto range = [&](double h, double* low, double* high) {
+      const double sh = sd_at(h);
+      const double own = sh * sh - s0 * s0;
+      if (h <= 0.0 || own <= 0.0) {
+        *low = h - z * sh;
+        *high = h + z * sh;
+        return;
+      }
+      const double nu = std::min(1e8, 2.0 * h * h / own);
+      // The two parts are independent-ish: their deviations add in quadrature.
+      const double down = h - h * chi2_quantile(tail, nu) / nu;
+      const double up = h * chi2_quantile(1.0 - tail, nu) / nu - h;
+      *low = h - std::hypot(down, z * s0);
+      *high = h + std::hypot(up, z * s0);
+    };
+    auto outside_high = [&](double h) {
+      double l = 0, u = 0;
+      range(h, &l, &u);
+      return center < l;
+    };
+    double hi_a = center, hi_b = center + z * std::max(t.theta_sd, s0);
+    bool bounded = true;
+    for (int expand = 0; !outside_high(hi_b); ++expand) {
+      if (expand == 60 || !(hi_b > 0.0)) {
+        bounded = false;
+        break;
+      }
+      hi_a = hi_b;
+      hi_b = center + 2.0 * (hi_b - center) + std::numeric_limits<double>::min();
+    }
+    for (int it = 0; bounded && it < 40 && hi_b - hi_a > 1e-4 * (hi_b - center); ++it) {
+      const double mid = 0.5 * (hi_a + hi_b);
+      (outside_high(mid) ? hi_b : hi_a) = mid;
+    }
+    const double hi = hi_b;
+    double lo = -1.0;  // negative: not significant (h = 0 is inside)
+    if (center > z * s0) {
+      double lo_a = 0.0, lo_b = center;  // outside at lo_a, inside at lo_b
+      for (int it = 0; it < 40 && lo_b - lo_a > 1e-4 * center; ++it) {
+        const double mid = 0.5 * (lo_a + lo_b);
+        double l = 0, u = 0;
+        range(mid, &l, &u);
+        (center > u ? lo_a : lo_b) = mid;
+      }
+      lo = lo_b;
+    }
+    coef.ci_high = std::sqrt(std::max(0.0, hi));
+    if (!bounded) {
+      coef.note = "the data do not bound this term from above; the upper limit shown is the last "
+                  "value tried";
+    }
+    if (theta(j) > 0.0 && lo > 0.0) {
+      coef.value = t.estimate;
+      coef.ci_low = std::sqrt(lo);
+      coef.identified = true;
+    } else {
+      coef.value = 0.0;
+      coef.ci_low = 0.0;
+      coef.identified = false;
+      if (theta(j) < 0.0) {
+        coef.note = strf("the fit gave a negative variance coefficient %s^2 < 0 "
+                         "(ill-conditioned or absent term): its square root of the absolute "
+                         "value, as the paper printed, is not a measurement; ci_high is an upper "
+                         "limit",
+                         term_name(j));
+      } else if (theta(j) == 0.0) {
+        coef.note = strf("term not supported by the data (estimate clamped at zero or "
+                         "rejected by the information criterion); ci_high is the %g%% upper "
+                         "limit",
+                         100 * options.level);
+      } else {
+        coef.note = strf("the estimate is not significant at %g%% (zero is inside its "
+                         "interval); ci_high is the upper limit",
+                         100 * options.level);
+      }
+    }
+  }
+
+  for (int j : dropped_terms) {
+    auto& coef = coefficient_of(result.coefficients, j);
+    if (!coef.identified) {
+      coef.note = strf("dominates the fitted model at fewer than %d taus of this record: it "
+                       "cannot be separated from its neighbours (record too short or tau range "
+                       "too narrow for this term); ci_high is an upper limit",
+                       options.min_dominant_taus);
+    }
+  }
+
+  // Diagnostics with the final model covariance.
+  const Vector r = y - g * theta.cwiseMax(0.0);
+  const Matrix wf = whitener(sigma, true);
+  summary.chi2 = (wf * r).squaredNorm();
+  summary.dof = k > free_set.size() ? k - free_set.size() : 0;
+  summary.chi2_dof = summary.dof > 0 ? summary.chi2 / static_cast<double>(summary.dof) : 0.0;
+  if (!std::isfinite(summary.chi2)) summary.chi2 = summary.chi2_dof = 0.0;
+  for (std::size_t i = 0; i < k; ++i) {
+    sd_points[i] = std::sqrt(std::max(0.0, sigma(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i))));
+  }
+  if (summary.dof > 0 && summary.chi2_dof > 4.0) {
+    summary.warnings.push_back(strf(
+        "chi2/dof = %.3g: the power-law model does not describe the curve well (a Gauss-Markov "
+        "or sinusoidal term, drift, or non-stationary data?); intervals are too narrow",
+        summary.chi2_dof));
+  }
+  fill_common(result, curve, sd_points);
+  // A term that dominates nowhere on the measured range is known only through its tail.
+  for (int j : fitted) {
+    auto& coef = coefficient_of(result.coefficients, j);
+    if (coef.identified && result.terms[j].tau_min_s == 0.0) {
+      coef.note = "significant, but it dominates at no measured tau: extrapolated from the "
+                  "other terms' range";
+    }
+  }
+  return result;
+}
+
+std::vector<std::string> record_warnings(std::span<const double> phase_si, double tau0_s) {
+  const std::size_t n = phase_si.size();
+  if (n < 5) {
+    throw InputError(strf("fit: %zu angle samples are too few (need at least 5)", n));
+  }
+  std::vector<std::string> warnings;
+  // Input checks on the rate (first differences of the phase), on up to 1e6 samples.
+  {
+    const std::size_t count = std::min<std::size_t>(n - 1, 1000000);
+    std::vector<double> rate(count);
+    for (std::size_t i = 0; i < count; ++i) rate[i] = (phase_si[i + 1] - phase_si[i]) / tau0_s;
+    const auto [mn, mx] = std::minmax_element(rate.begin(), rate.end());
+    const double lo = *mn, hi = *mx;
+    if (!std::isfinite(lo) || !std::isfinite(hi)) throw InputError("fit: the record contains non-finite values");
+    if (hi > lo) {
+      std::size_t at_lo = 0, at_hi = 0;
+      for (double v : rate) {
+        at_lo += (v == lo);
+        at_hi += (v == hi);
+      }
+      const double frac = static_cast<double>(std::max(at_lo, at_hi)) / static_cast<double>(count);
+      if (frac > 1e-3 && std::max(at_lo, at_hi) > 5) {
+        warnings.push_back(strf("%.2g%% of the samples sit at the record's extreme value: "
+                                       "saturated data? the fit assumes an unclipped sensor",
+                                       100 * frac));
+      }
+      std::vector<double> sorted = rate;
+      std::sort(sorted.begin(), sorted.end());
+      // Distinct values relative to the spread (with a tolerance for the integration rounding).
+      const double tol = 1e-9 * (hi - lo);
+      std::size_t distinct = 1;
+      for (std::size_t i = 1; i < sorted.size(); ++i) distinct += (sorted[i] - sorted[i - 1] > tol);
+      if (distinct < 64 && count >= 1000) {
+        warnings.push_back(strf("the rate takes only %zu distinct values: quantized data; the "
+                                       "quantization appears as white angle noise (Q) at short tau",
+                                       distinct));
+      }
+    }
+  }
+  return warnings;
+}
+
+bool is_constant_record(std::span<const double> phase_si, double tau0_s) {
+  if (phase_si.size() < 2) return true;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (std::size_t i = 0; i + 1 < phase_si.size(); ++i) {
+    const double r = (phase_si[i + 1] - phase_si[i]) / tau0_s;
+    lo = std::min(lo, r);
+    hi = std::max(hi, r);
+  }
+  return !(hi - lo > 1e-9 * std::max(std::abs(lo), std::abs(hi)));
+}
+
+FitResult fit_record(std::span<const double> phase_si, double tau0_s, const FitOptions& options) {
+  const std::size_t n = phase_si.size();
+  const auto warnings = record_warnings(phase_si, tau0_s);
+  if (is_constant_record(phase_si, tau0_s)) {
+    // The curve would be rounding noise: report, do not fit it (a zero curve gives the
+    // degenerate_input status and its message).
+    const DevPoint zero{1, tau0_s, 0.0};
+    FitResult r = fit_allan(std::span<const DevPoint>(&zero, 1), n, tau0_s, options);
+    r.summary.warnings = warnings;
+    return r;
+  }
+  std::vector<std::size_t> factors;
+  for (std::size_t m = 1; 2 * m < n; m *= 2) factors.push_back(m);
+  const auto points = oadev(phase_si, tau0_s, factors);
+  FitResult result = fit_allan(points, n, tau0_s, options);
+  result.summary.warnings.insert(result.summary.warnings.begin(), warnings.begin(), warnings.end());
+  return result;
+}
+
+}  // namespace imunoise::fit

@@ -1,0 +1,84 @@
+// imunoise fit as a user runs it: the interface.md JSON, the table, and bad input.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "cli/cli_runner.hpp"
+
+namespace imunoise {
+namespace {
+
+using test::run_cli;
+using test::TempDir;
+
+TEST(CliFit, JsonFollowsTheInterfaceContract) {
+  TempDir dir;
+  const std::string file = dir.file("g.f64");
+  const auto sim = run_cli({"simulate", "--rate", "200", "--duration", "1800", "--N", "8.9e-4",
+                            "--B", "5.9e-4", "--units", "deg/s", "--seed", "3", "--format", "f64",
+                            "-o", file});
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const auto r = run_cli({"fit", file, "--binary", "f64", "--rate", "200", "--units", "deg/s",
+                          "--format", "json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["unit"], "deg/s");
+  EXPECT_EQ(j["method"], "wls");
+  const auto& n = j["terms"]["N"];
+  EXPECT_EQ(n["unit"], "deg/sqrt(s)");
+  EXPECT_TRUE(n["identified"].get<bool>());
+  EXPECT_NEAR(n["value"].get<double>(), 8.9e-4, 8.9e-4 * 0.01);
+  EXPECT_LE(n["ci_low"].get<double>(), n["value"].get<double>());
+  EXPECT_GE(n["ci_high"].get<double>(), n["value"].get<double>());
+  EXPECT_EQ(n["customary"]["unit"], "deg/sqrt(h)");
+  EXPECT_NEAR(n["customary"]["value"].get<double>(), n["value"].get<double>() * 60, 1e-9);
+  EXPECT_EQ(j["terms"]["B"]["customary"]["unit"], "deg/h");
+  EXPECT_NEAR(j["terms"]["B"]["customary"]["value"].get<double>(),
+              j["terms"]["B"]["value"].get<double>() * 3600, 1e-9);
+  for (const char* absent : {"Q", "R"}) {
+    EXPECT_FALSE(j["terms"][absent]["identified"].get<bool>()) << absent;
+    EXPECT_EQ(j["terms"][absent]["value"].get<double>(), 0.0) << absent;
+  }
+  EXPECT_EQ(j["terms"]["K"]["customary"]["unit"], "deg/h/sqrt(h)");
+  EXPECT_TRUE(j["diagnostics"]["residuals"].is_array());
+  EXPECT_TRUE(j["paper"].contains("tau_opt_s"));
+  EXPECT_EQ(r.out.find("NaN"), std::string::npos);
+
+  for (const char* method : {"ols", "slope"}) {
+    const auto m = run_cli({"fit", file, "--binary", "f64", "--rate", "200", "--units", "deg/s",
+                            "--method", method, "--format", "table"});
+    EXPECT_EQ(m.exit_code, 0) << m.err;
+    EXPECT_NE(m.out.find("deg/sqrt(h)"), std::string::npos) << method;
+    EXPECT_EQ(m.out.find(" nan"), std::string::npos) << method;
+    EXPECT_EQ(m.out.find(" -nan"), std::string::npos) << method;
+  }
+}
+
+TEST(CliFit, BadInputGivesClearMessages) {
+  TempDir dir;
+  std::string zeros;
+  for (int i = 0; i < 5000; ++i) zeros += "0\n";
+  const auto z = run_cli({"fit", dir.write("zeros.txt", zeros), "--rate", "100"});
+  EXPECT_EQ(z.exit_code, 1);
+  EXPECT_NE(z.err.find("constant"), std::string::npos) << z.err;
+  EXPECT_TRUE(z.out.empty());
+
+  std::string few;
+  for (int i = 0; i < 8; ++i) few += std::to_string(0.1 * ((i * 7) % 5)) + "\n";
+  const auto f = run_cli({"fit", dir.write("few.txt", few), "--rate", "100"});
+  EXPECT_EQ(f.exit_code, 1);
+  EXPECT_NE(f.err.find("too few"), std::string::npos) << f.err;
+
+  const auto m = run_cli({"fit", dir.write("x.txt", zeros), "--rate", "100", "--method", "lsq"});
+  EXPECT_EQ(m.exit_code, 1);
+  EXPECT_NE(m.err.find("wls, ols or slope"), std::string::npos) << m.err;
+  const auto t = run_cli({"fit", dir.file("x.txt"), "--rate", "100", "--terms", "N,X"});
+  EXPECT_EQ(t.exit_code, 1);
+  EXPECT_NE(t.err.find("unknown term"), std::string::npos) << t.err;
+}
+
+}  // namespace
+}  // namespace imunoise
