@@ -7,7 +7,10 @@
 #include <benchmark/benchmark.h>
 
 #include <cmath>
+#include <cstdint>
+#include <initializer_list>
 #include <random>
+#include <string>
 #include <vector>
 
 #include "imunoise/deviation.hpp"
@@ -45,6 +48,11 @@ double naive_sum(Estimator e, const std::vector<double>& x, std::size_t m) {
     }
   } else if (e == Estimator::ohdev) {
     for (std::size_t k = 0; k + 3 * m < n; ++k) {
+      const double d = x[k + 3 * m] - 3 * x[k + 2 * m] + 3 * x[k + m] - x[k];
+      s += d * d;
+    }
+  } else if (e == Estimator::hdev) {  // non-overlapping: start indices step by m
+    for (std::size_t k = 0; k + 3 * m < n; k += m) {
       const double d = x[k + 3 * m] - 3 * x[k + 2 * m] + 3 * x[k + m] - x[k];
       s += d * d;
     }
@@ -96,21 +104,35 @@ void BM_naive(benchmark::State& state, Estimator e, const char* grid) {
 
 }  // namespace
 
-#define IMUNOISE_BENCH(name, ...) \
-  BENCHMARK_CAPTURE(BM_engine, name##_1thread, __VA_ARGS__, 1)->Unit(benchmark::kMillisecond)->UseRealTime(); \
-  BENCHMARK_CAPTURE(BM_engine, name##_2threads, __VA_ARGS__, 2)->Unit(benchmark::kMillisecond)->UseRealTime(); \
-  BENCHMARK_CAPTURE(BM_naive, name##_naive, __VA_ARGS__)->Unit(benchmark::kMillisecond)->UseRealTime()
+// Registers the engine on 1 and 2 threads and the naive baseline, for each size.
+void register_case(const char* name, Estimator e, const char* grid,
+                   std::initializer_list<std::int64_t> sizes) {
+  const std::string base(name);
+  for (const unsigned threads : {1u, 2u}) {
+    auto* b = benchmark::RegisterBenchmark((base + "_" + std::to_string(threads) + "thread").c_str(),
+                                           BM_engine, e, grid, threads);
+    for (const auto n : sizes) b->Arg(n);
+    b->Unit(benchmark::kMillisecond)->UseRealTime();
+  }
+  auto* naive = benchmark::RegisterBenchmark((base + "_naive").c_str(), BM_naive, e, grid);
+  for (const auto n : sizes) naive->Arg(n);
+  naive->Unit(benchmark::kMillisecond)->UseRealTime();
+}
 
-IMUNOISE_BENCH(oadev_octave, Estimator::oadev, "octave")->Arg(1'000'000)->Arg(10'000'000);
-IMUNOISE_BENCH(oadev_perdecade10, Estimator::oadev, "perdecade:10")->Arg(10'000'000);
-IMUNOISE_BENCH(oadev_all, Estimator::oadev, "all")->Arg(100'000);
-IMUNOISE_BENCH(ohdev_octave, Estimator::ohdev, "octave")->Arg(1'000'000)->Arg(10'000'000);
-IMUNOISE_BENCH(mdev_octave, Estimator::mdev, "octave")->Arg(1'000'000)->Arg(10'000'000);
-BENCHMARK_CAPTURE(BM_engine, hdev_octave_1thread, Estimator::hdev, "octave", 1)
-    ->Arg(1'000'000)->Arg(10'000'000)->Unit(benchmark::kMillisecond)->UseRealTime();
-// oadev over every factor on 1e6 samples: 2.5e11 terms (AllanTools: ~800 s). Opt-in:
-// --benchmark_filter=all_1e6
-BENCHMARK_CAPTURE(BM_engine, oadev_all_1e6_2threads, Estimator::oadev, "all", 2)
-    ->Arg(1'000'000)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
-
-BENCHMARK_MAIN();
+int main(int argc, char** argv) {
+  register_case("oadev_octave", Estimator::oadev, "octave", {1'000'000, 10'000'000});
+  register_case("oadev_perdecade10", Estimator::oadev, "perdecade:10", {10'000'000});
+  register_case("oadev_all", Estimator::oadev, "all", {100'000});
+  register_case("ohdev_octave", Estimator::ohdev, "octave", {1'000'000, 10'000'000});
+  register_case("mdev_octave", Estimator::mdev, "octave", {1'000'000, 10'000'000});
+  register_case("hdev_octave", Estimator::hdev, "octave", {1'000'000, 10'000'000});
+  // oadev over every factor on 1e6 samples: 2.5e11 terms (AllanTools: ~800 s). Opt-in:
+  // --benchmark_filter=all_1e6
+  benchmark::RegisterBenchmark("oadev_all_1e6_2threads", BM_engine, Estimator::oadev, "all", 2u)
+      ->Arg(1'000'000)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -10,6 +10,7 @@
 #include <fmt/core.h>
 
 #include "imunoise/error.hpp"
+#include "imunoise/finite.hpp"
 #include "imunoise/io/binary_reader.hpp"
 #include "imunoise/io/text_reader.hpp"
 #include "imunoise/phase.hpp"
@@ -110,11 +111,9 @@ void require_rate(double rate_hz, const std::string& source) {
 // Values so large that their running integral overflows cannot be analysed; say so instead of
 // printing NaN.
 void require_finite_phase(const PhaseRecord& record) {
-  for (std::size_t k = 0; k < record.phase_si.size(); ++k) {
-    if (!std::isfinite(record.phase_si[k])) {
-      throw InputError(record.source + ": the integral of the samples overflows at sample " +
-                       std::to_string(k) + "; check --units, --scale and --sensitivity");
-    }
+  if (const std::size_t k = first_non_finite(record.phase_si, 0); k < record.phase_si.size()) {
+    throw InputError(record.source + ": the integral of the samples overflows at sample " +
+                     std::to_string(k) + "; check --units, --scale and --sensitivity");
   }
 }
 

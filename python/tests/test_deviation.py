@@ -50,3 +50,24 @@ def test_bad_input_is_value_error():
         imunoise.oadev(np.zeros(10), taus=[100.0])
     with pytest.raises(ValueError, match="1-D"):
         imunoise.oadev(np.zeros((3, 3)))
+
+
+@pytest.mark.parametrize("estimator", ["oadev", "ohdev", "mdev", "adev", "totdev"])
+@pytest.mark.parametrize("data_type", ["phase", "freq"])
+@pytest.mark.parametrize("bad", [np.nan, np.inf, -np.inf])
+def test_non_finite_sample_is_named_wherever_it_is(estimator, data_type, bad):
+    # The first and last samples, and one in the middle; octave taus and a single long tau
+    # (whose terms do not reach every sample, so the input itself must be scanned).
+    for pos in (0, 517, 999):
+        x = np.random.default_rng(pos).standard_normal(1000)
+        x[pos] = bad
+        for taus in ("octave", [0.3 * len(x)]):
+            with pytest.raises(ValueError, match=f"sample {pos} is not finite"):
+                imunoise.deviation(estimator, x, rate=1.0, data_type=data_type, taus=taus)
+
+
+def test_overflowing_values_are_an_error_not_inf():
+    x = np.full(100, 1e308)
+    x[::2] = -1e308
+    with pytest.raises(ValueError, match="too large"):
+        imunoise.oadev(x, rate=1.0, data_type="phase")

@@ -1,38 +1,41 @@
 #include "kernels.hpp"
 
-// GCC builds an AVX2+FMA clone and a baseline one, picked by the loader (ifunc).
+// GCC builds AVX-512, AVX2+FMA and baseline clones, picked by the loader (ifunc).
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-#define IMUNOISE_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#define IMUNOISE_CLONES \
+  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define IMUNOISE_CLONES
 #endif
 
-// The 32-byte vector type only crosses always-inline helpers, never a real call boundary, so
+// The 64-byte vector type only crosses always-inline helpers, never a real call boundary, so
 // GCC's note that its ABI would differ without AVX does not apply.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace imunoise::detail {
 namespace {
 
-// Four independent accumulators of four lanes: a single accumulator would serialise on the
-// latency of the add (the loop would run at one term per ~4 cycles instead of ~2 per cycle).
-typedef double Vec4 __attribute__((vector_size(32)));
-constexpr std::size_t kLanes = 4;
+// Four independent accumulators of eight lanes: a single accumulator would serialise on the
+// latency of the add. Eight lanes are one AVX-512 register, two AVX2 ones, four SSE2 ones:
+// each clone gets the widest operations it has.
+typedef double Vec8 __attribute__((vector_size(64)));
+constexpr std::size_t kLanes = 8;
+static_assert(sizeof(Vec8) == kLanes * sizeof(double));
 constexpr std::size_t kUnroll = 4;
 
-__attribute__((always_inline)) inline Vec4 load(const double* p) {
-  Vec4 v;
+__attribute__((always_inline)) inline Vec8 load(const double* p) {
+  Vec8 v;
   __builtin_memcpy(&v, p, sizeof v);
   return v;
 }
 
-__attribute__((always_inline)) inline double horizontal_sum(const Vec4 (&acc)[kUnroll]) {
-  const Vec4 s = (acc[0] + acc[1]) + (acc[2] + acc[3]);
-  return (s[0] + s[1]) + (s[2] + s[3]);
+__attribute__((always_inline)) inline double horizontal_sum(const Vec8 (&acc)[kUnroll]) {
+  const Vec8 s = (acc[0] + acc[1]) + (acc[2] + acc[3]);
+  return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
 }
 
 // Sum of squares of a finite difference of order 2 or 3. No lambdas or non-inlined helpers:
-// in a target_clones function every callee must be inlined, or a 32-byte vector would cross a
+// in a target_clones function every callee must be inlined, or a 64-byte vector would cross a
 // call between code built for different instruction sets (it does at -O0 otherwise).
 template <int Order>
 __attribute__((always_inline)) inline double sum_sq_difference(const double* x, std::size_t m,
@@ -41,12 +44,12 @@ __attribute__((always_inline)) inline double sum_sq_difference(const double* x, 
   const double* x1 = x + m;
   const double* x2 = x + 2 * m;
   const double* x3 = x + 3 * m;
-  Vec4 acc[kUnroll] = {};
+  Vec8 acc[kUnroll] = {};
   std::size_t k = 0;
   for (; k + kLanes * kUnroll <= count; k += kLanes * kUnroll) {
     for (std::size_t u = 0; u < kUnroll; ++u) {
       const std::size_t i = k + u * kLanes;
-      Vec4 d;
+      Vec8 d;
       if constexpr (Order == 2) {
         d = load(x2 + i) - 2.0 * load(x1 + i) + load(x0 + i);
       } else {
