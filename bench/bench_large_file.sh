@@ -15,7 +15,7 @@ fi
 cat "$file" > /dev/null  # warm the page cache
 echo "| run | wall (s) | samples/s | ns/sample | input GB/s | peak RSS (MB) |"
 echo "|---|---|---|---|---|---|"
-for run in 1 2 3; do
+for run in 1 2 3 4 5; do
   stats=$( { /usr/bin/time -f "%e %M" "$cli" dev "$file" --rate 200 --units deg/s --estimator oadev --taus octave "$@" > /dev/null; } 2>&1 | tail -1)
   read -r wall rss_kb <<< "$stats"
   awk -v r="$run" -v w="$wall" -v k="$rss_kb" -v n="$n" 'BEGIN {
