@@ -17,6 +17,7 @@
 #include "imunoise/total.hpp"
 #include "input_options.hpp"
 #include "output.hpp"
+#include "work_budget.hpp"
 
 namespace imunoise::cli {
 namespace {
@@ -33,6 +34,7 @@ struct DevOptionsCli {
   bool bias_correct = false;
   std::string format = "table";
   unsigned threads = 0;
+  double time_budget_s = 300.0;
 };
 
 struct Curve {
@@ -41,6 +43,8 @@ struct Curve {
   std::vector<DevPoint> points;  // in the output unit
   std::string unit;
   std::vector<PointConfidence> confidence;  // empty with --no-ci
+  std::vector<std::size_t> skipped;  // factors left out by --time-budget
+  std::string note;                  // why, and how to get them
 };
 
 nlohmann::json json_number(double v) {
@@ -73,6 +77,10 @@ std::string format_json(const PhaseRecord& record, const std::vector<Curve>& cur
     }
     object["points"] = std::move(points);
     if (curve.label != estimator_name(curve.estimator)) object["bias_corrected"] = true;
+    if (!curve.skipped.empty()) {
+      object["skipped_factors"] = curve.skipped;
+      object["note"] = curve.note;
+    }
     if (record.timing) {
       const auto& t = *record.timing;
       object["timing"] = {{"rate_hz", t.rate_hz}, {"median_dt_s", t.median_dt_s},
@@ -129,6 +137,7 @@ std::string format_table(const PhaseRecord& record, const std::vector<Curve>& cu
         out += fmt::format("# note (m = {}): {}\n", curve.points[i].m, curve.confidence[i].note);
       }
     }
+    if (!curve.note.empty()) out += fmt::format("# note: {}\n", curve.note);
   }
   return out;
 }
@@ -161,8 +170,21 @@ void run_dev(const DevOptionsCli& options) {
                                     ? "3" : "2") +
                        " rate samples); record longer");
     }
-    const auto factors =
+    const auto requested =
         estimator_averaging_factors(estimator, grid, record.rate_hz, record.phase_si.size());
+    const BudgetSplit split =
+        split_by_budget(estimator, record.phase_si.size(), requested, options.time_budget_s);
+    const auto& factors = split.kept;
+    std::string skip_note;
+    if (!split.skipped.empty()) {
+      skip_note = fmt::format(
+          "{} at m >= {} (tau >= {:.6g} s) skipped: those {} taus would take {} (its cost grows "
+          "as N m per tau); raise --time-budget (0: no limit) or choose taus with --taus/--af",
+          estimator_name(estimator), split.skipped.front(),
+          static_cast<double>(split.skipped.front()) * tau_per_factor(estimator) * tau0_s,
+          split.skipped.size(), duration_text(split.skipped_seconds));
+      fmt::print(stderr, "imunoise: warning: {}\n", skip_note);
+    }
     auto points = compute_deviation(estimator, record.phase_si, tau0_s, factors, {options.threads});
     std::vector<PointConfidence> confidence;
     if (!options.no_ci) {
@@ -185,10 +207,11 @@ void run_dev(const DevOptionsCli& options) {
       corrected = points;
       apply_bias_correction(corrected, estimator, record.phase_si.size());
     }
-    curves.push_back({estimator, name, std::move(points), unit_label(record, integrated), confidence});
+    curves.push_back({estimator, name, std::move(points), unit_label(record, integrated), confidence,
+                      split.skipped, skip_note});
     if (options.bias_correct && has_correction) {
       curves.push_back({estimator, name + "-bc", std::move(corrected), unit_label(record, integrated),
-                        std::move(confidence)});
+                        std::move(confidence), split.skipped, skip_note});
     }
   }
   std::string text;
@@ -233,6 +256,11 @@ void setup_dev(CLI::App& app) {
                       "WHPM FLPM WHFM FLFM RWFM FWFM RRFM");
   command->add_option("--format", options->format, "table, json or csv")->capture_default_str();
   command->add_option("--threads", options->threads, "worker threads (0: all cores)");
+  command->add_option("--time-budget", options->time_budget_s,
+                      "seconds (estimated) that mtotdev, ttotdev, htotdev and theo1 may take "
+                      "each; their longest taus beyond it are skipped with a note (0: no limit)")
+      ->capture_default_str()
+      ->check(CLI::NonNegativeNumber);
   command->add_option("-o,--output", options->output.path, "write to FILE instead of standard output");
   command->add_flag("--force", options->output.force, "replace an existing output file");
   command->callback([options] { run_dev(*options); });

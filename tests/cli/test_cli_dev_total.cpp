@@ -82,3 +82,39 @@ TEST(CliDevTotal, TheoTausAndBiasCorrectedCurve) {
 
 }  // namespace
 }  // namespace imunoise
+
+namespace imunoise {
+namespace {
+
+// mtotdev on 1000 points at octave taus: m = 1..256, the estimate (N - 3m + 1) 6m ns sums to
+// ~0.5 ms; a 0.1 ms budget keeps the short taus and skips the long ones with a note, in the
+// JSON and on standard error, and the run still succeeds.
+TEST(CliDevTotal, TimeBudgetSkipsTheLongestTausWithANote) {
+  test::TempDir dir;
+  const auto file = dir.write("nbs14.txt", nbs14_text());
+  const auto full = test::run_cli({"dev", file, "--rate", "1", "--estimator", "mtotdev",
+                                   "--format", "json", "--no-ci"});
+  ASSERT_EQ(full.exit_code, 0) << full.err;
+  const auto all = nlohmann::json::parse(full.out);
+  EXPECT_FALSE(all.contains("skipped_factors"));
+  const auto r = test::run_cli({"dev", file, "--rate", "1", "--estimator", "mtotdev", "--format",
+                                "json", "--no-ci", "--time-budget", "0.0001"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.contains("skipped_factors"));
+  const auto kept = j["points"].size();
+  const auto skipped = j["skipped_factors"].size();
+  EXPECT_GT(kept, 0u);
+  EXPECT_GT(skipped, 0u);
+  EXPECT_EQ(kept + skipped, all["points"].size());
+  // The kept points are the short taus, unchanged.
+  for (std::size_t i = 0; i < kept; ++i) {
+    EXPECT_EQ(j["points"][i]["dev"], all["points"][i]["dev"]);
+  }
+  EXPECT_EQ(j["skipped_factors"][0], all["points"][kept]["m"]);
+  EXPECT_NE(r.err.find("--time-budget"), std::string::npos) << r.err;
+  EXPECT_NE(j["note"].get<std::string>().find("skipped"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace imunoise
