@@ -12,7 +12,7 @@ double estimated_seconds(Estimator estimator, std::size_t n_phase, std::size_t m
     case Estimator::ttotdev:
     case Estimator::htotdev:
       // (N - 3m + 1) subsequences of 6m window terms each.
-      return n > 3.0 * mm ? (n - 3.0 * mm + 1.0) * 6.0 * mm * 1.0e-9 : 0.0;
+      return n > 3.0 * mm ? (n - 3.0 * mm + 1.0) * 6.0 * mm * 0.1e-9 : 0.0;
     case Estimator::theo1:
       // (N - m) start points times m/2 spans.
       return n > mm ? (n - mm) * 0.5 * mm * 0.13e-9 : 0.0;

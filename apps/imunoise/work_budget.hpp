@@ -13,7 +13,7 @@ namespace imunoise::cli {
 
 /// Estimated wall time in seconds of one tau of `estimator` at factor m on n_phase phase points,
 /// calibrated on the project's 2-core 2.3 GHz build machine (docs/performance.md: mtotdev
-/// about 1 ns per window term, theo1 about 0.13 ns per term, with both cores). Zero for the
+/// about 0.1 ns per window term, theo1 about 0.13 ns per term, with both cores). Zero for the
 /// estimators that cost O(N) per tau.
 double estimated_seconds(Estimator estimator, std::size_t n_phase, std::size_t m);
 

@@ -19,9 +19,10 @@
 //     Mod Totvar(tau) = 1 / (2 tau^2 (N-3m+1)) sum_n Mtot(n).
 //   Domain 1 <= m <= floor(N/3); n = N - 3m + 1 (Stable32's count). ttotdev = tau/sqrt(3) mtotdev.
 //   Algorithm: per subsequence, a prefix sum P of the detrended points; the prefix of the
-//   reflected 9m sequence is an odd extension of P about each fold, so every z_j is a third
-//   difference of it at stride m: O(m) per subsequence, O(N m) per factor (AllanTools and the
-//   SP 1065 definition are O(N m^2)). No sub-O(N m) exact algorithm is known to us (SP 1065, the
+//   reflected 9m sequence is an odd extension of P about each fold, so the six z_{r+km}
+//   (k = 0..5) are fixed combinations of P at six points: O(m) per subsequence, O(N m) per
+//   factor (AllanTools and the SP 1065 definition are O(N m^2)), eight subsequences per vector
+//   (src/core/kernels.cpp). No sub-O(N m) exact algorithm is known to us (SP 1065, the
 //   TOTVAR papers and Stable32's notes give none); the subsequences are spread over threads.
 //
 // htotdev: the same construction applied to the N-1 rate (frequency) values y[k] = (x[k+1] -

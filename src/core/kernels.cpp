@@ -1,5 +1,7 @@
 #include "kernels.hpp"
 
+#include <vector>
+
 // GCC builds AVX-512, AVX2+FMA and baseline clones, picked by the loader (ifunc).
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
 #define IMUNOISE_CLONES \
@@ -81,6 +83,103 @@ IMUNOISE_CLONES double sum_sq_second_difference(const double* x, std::size_t m,
 IMUNOISE_CLONES double sum_sq_third_difference(const double* x, std::size_t m,
                                                std::size_t count) {
   return sum_sq_difference<3>(x, m, count);
+}
+
+namespace {
+
+// The six third differences z_{r+km} (k = 0..5) as combinations of the subsequence prefix P at
+// t = 3m-r, 2m-r, m-r, r, r+m, r+2m (in that order), plus gamma_k times 2T, T = P(3m): the prefix
+// of the 9m reflected sequence (less a constant) at r + k m, k = 0..8, is -P(3m-r), -P(2m-r),
+// -P(m-r), P(r), P(r+m), P(r+2m), 2T-P(3m-r), 2T-P(2m-r), 2T-P(m-r).
+constexpr int kZ[6][6] = {{1, -3, 3, 1, 0, 0},  {0, 1, -3, -3, 1, 0}, {0, 0, 1, 3, -3, 1},
+                          {-1, 0, 0, -1, 3, -3}, {3, -1, 0, 0, -1, 3}, {-3, 3, -1, 0, 0, -1}};
+constexpr int kGamma[6] = {0, 0, 0, 1, -2, 1};
+
+// P(t) = (ul[t] - ul[0]) - mean t - slope t (t - 1) / 2, eight windows at once.
+__attribute__((always_inline)) inline Vec8 detrended_prefix(const double* ul, std::size_t t,
+                                                           Vec8 base, Vec8 mean, Vec8 slope) {
+  const double td = static_cast<double>(t);
+  return (load(ul + t) - base) - mean * td - slope * (0.5 * td * (td - 1.0));
+}
+
+// For each r, the t- and t(t-1)/2-weights of the detrending polynomial in each z_k:
+// table[12 r + k] = sum_i kZ[k][i] t_i(r), table[12 r + 6 + k] = sum_i kZ[k][i] t_i (t_i - 1) / 2.
+// Integers, exact in doubles below 2^53.
+std::vector<double> polynomial_weights(std::size_t m) {
+  std::vector<double> table(12 * m);
+  const auto mi = static_cast<long long>(m);
+  for (long long r = 0; r < mi; ++r) {
+    const long long t[6] = {3 * mi - r, 2 * mi - r, mi - r, r, r + mi, r + 2 * mi};
+    for (int k = 0; k < 6; ++k) {
+      long long linear = 0, quadratic = 0;
+      for (int i = 0; i < 6; ++i) {
+        linear += kZ[k][i] * t[i];
+        quadratic += kZ[k][i] * (t[i] * (t[i] - 1) / 2);
+      }
+      table[12 * static_cast<std::size_t>(r) + static_cast<std::size_t>(k)] =
+          static_cast<double>(linear);
+      table[12 * static_cast<std::size_t>(r) + 6 + static_cast<std::size_t>(k)] =
+          static_cast<double>(quadratic);
+    }
+  }
+  return table;
+}
+
+}  // namespace
+
+IMUNOISE_CLONES long double reflected_window_sum(const double* ul, std::size_t m,
+                                                 std::size_t count) {
+  const std::size_t len = 3 * m;
+  const std::size_t h = len / 2;
+  const double len_d = static_cast<double>(len);
+  const double slope_scale =
+      1.0 / (static_cast<double>(h) * static_cast<double>(len - h));  // half-mean gap x h
+  const double ramp_sum = 0.5 * len_d * (len_d - 1.0);                // sum of t, t < len
+  const double md = static_cast<double>(m);
+  const double scale = 1.0 / (6.0 * md * md * md);
+  const std::vector<double> weights = polynomial_weights(m);
+  long double total = 0.0L;
+  for (std::size_t g = 0; g < count; g += kLanes) {
+    const double* p = ul + g;
+    const Vec8 base = load(p);
+    const Vec8 end = load(p + len);
+    const Vec8 slope = ((end - load(p + len - h)) - (load(p + h) - base)) * slope_scale;
+    const Vec8 mean = ((end - base) - slope * ramp_sum) * (1.0 / len_d);
+    const Vec8 twice_total = 2.0 * detrended_prefix(p, len, base, mean, slope);
+    // z_k = sum_i kZ[k][i] ul[t_i] - (base sum_i kZ[k][i] - gamma_k 2T) - mean A_k - slope B_k.
+    Vec8 constant[6];
+    for (int k = 0; k < 6; ++k) {
+      const int coefficient_sum = kZ[k][0] + kZ[k][1] + kZ[k][2] + kZ[k][3] + kZ[k][4] + kZ[k][5];
+      constant[k] = base * static_cast<double>(coefficient_sum) -
+                    twice_total * static_cast<double>(kGamma[k]);
+    }
+    Vec8 acc[6] = {};
+    const double* w = weights.data();
+    for (std::size_t r = 0; r < m; ++r, w += 12) {
+      const Vec8 a0 = load(p + len - r);
+      const Vec8 a1 = load(p + 2 * m - r);
+      const Vec8 a2 = load(p + m - r);
+      const Vec8 b0 = load(p + r);
+      const Vec8 b1 = load(p + r + m);
+      const Vec8 b2 = load(p + r + 2 * m);
+      const Vec8 z0 = ((b0 + a0) - 3.0 * (a1 - a2)) - constant[0] - mean * w[0] - slope * w[6];
+      const Vec8 z1 = ((b1 + a1) - 3.0 * (b0 + a2)) - constant[1] - mean * w[1] - slope * w[7];
+      const Vec8 z2 = ((b2 + a2) - 3.0 * (b1 - b0)) - constant[2] - mean * w[2] - slope * w[8];
+      const Vec8 z3 = (3.0 * (b1 - b2) - (a0 + b0)) - constant[3] - mean * w[3] - slope * w[9];
+      const Vec8 z4 = (3.0 * (a0 + b2) - (a1 + b1)) - constant[4] - mean * w[4] - slope * w[10];
+      const Vec8 z5 = (3.0 * (a1 - a0) - (a2 + b2)) - constant[5] - mean * w[5] - slope * w[11];
+      acc[0] += z0 * z0;
+      acc[1] += z1 * z1;
+      acc[2] += z2 * z2;
+      acc[3] += z3 * z3;
+      acc[4] += z4 * z4;
+      acc[5] += z5 * z5;
+    }
+    const Vec8 s = ((acc[0] + acc[1]) + (acc[2] + acc[3])) + (acc[4] + acc[5]);
+    const std::size_t lanes = count - g < kLanes ? count - g : kLanes;
+    for (std::size_t lane = 0; lane < lanes; ++lane) total += s[lane] * scale;
+  }
+  return total;
 }
 
 }  // namespace imunoise::detail

@@ -8,6 +8,7 @@
 
 #include "domain_check.hpp"
 #include "imunoise/hadamard.hpp"
+#include "kernels.hpp"
 #include "parallel.hpp"
 #include "square_sum.hpp"
 
@@ -25,106 +26,40 @@ std::vector<double> reflect_inverted(std::span<const double> x) {
   return ext;
 }
 
-// sum_{i=begin}^{end-1} f(i) in four interleaved partial sums (fixed order).
-template <class F>
-double sum4(std::size_t begin, std::size_t end, F&& f) {
-  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-  std::size_t i = begin;
-  for (; i + 4 <= end; i += 4) {
-    s0 += f(i);
-    s1 += f(i + 1);
-    s2 += f(i + 2);
-    s3 += f(i + 3);
+// Prefix sums ul[i] = sum_{k<i} v[k] of v[k] = (u[first+k] - u[first]) - s k, the block's own
+// offset and end-to-end slope s removed so that the sums stay at the size of the local
+// excursions (a large rate offset would otherwise cost digits); zero past the end of u.
+std::vector<double> local_prefix(std::span<const double> u, std::size_t first,
+                                 std::size_t size) {
+  const std::size_t valid = std::min(size - 1, u.size() - first);
+  const double base = u[first];
+  const double slope =
+      valid > 1 ? (u[first + valid - 1] - base) / static_cast<double>(valid - 1) : 0.0;
+  std::vector<double> ul(size);
+  double run = 0.0;
+  ul[0] = 0.0;
+  for (std::size_t k = 0; k + 1 < size; ++k) {
+    if (k < valid) run += (u[first + k] - base) - slope * static_cast<double>(k);
+    ul[k + 1] = run;
   }
-  for (; i < end; ++i) s0 += f(i);
-  return (s0 + s1) + (s2 + s3);
+  return ul;
 }
 
-// The shared mtot/htot kernel over a sequence u of length L: returns
-//   sum_{n=0}^{L-3m} (1/(6m)) sum_{j=0}^{6m-1} z_j(n)^2
-// (see total.hpp). O(m) per subsequence with the odd-extension prefix trick.
-class ReflectedKernel {
- public:
-  explicit ReflectedKernel(std::size_t m) : m_(m), p_(3 * m + 1), pe_(9 * m + 1) {}
-
-  // Mtot(n) for the subsequence u[0..3m-1].
-  double subsequence(const double* u) {
-    const std::size_t m = m_;
-    const std::size_t len = 3 * m;
-    const std::size_t h = len / 2;
-    // Half-average slope of the points relative to the first one. Sums in four interleaved
-    // chains (and the prefix below in four quarters) so that no long dependent chain of
-    // additions sets the pace: this kernel runs (N - 3m + 1) times per factor.
-    const double u0 = u[0];
-    const double first = sum4(0, h, [&](std::size_t i) { return u[i] - u0; });
-    const double second = sum4(len - h, len, [&](std::size_t i) { return u[i] - u0; });
-    const double slope = (second - first) / (static_cast<double>(h) * static_cast<double>(len - h));
-    auto detrended = [&](std::size_t i) { return (u[i] - u0) - slope * static_cast<double>(i); };
-    // Detrended points about their mean keep the prefix sums small.
-    const double mean = sum4(0, len, detrended) / static_cast<double>(len);
-    const std::size_t quarter = (len + 3) / 4;
-    const std::size_t last = len - 3 * quarter <= quarter ? len - 3 * quarter : 0;  // length of the 4th quarter
-    double run0 = 0.0, run1 = 0.0, run2 = 0.0, run3 = 0.0;
-    p_[0] = 0.0;
-    for (std::size_t t = 0; t < quarter; ++t) {
-      run0 += detrended(t) - mean;
-      p_[t + 1] = run0;
-      if (quarter + t < len) {
-        run1 += detrended(quarter + t) - mean;
-        p_[quarter + t + 1] = run1;
-      }
-      if (2 * quarter + t < len) {
-        run2 += detrended(2 * quarter + t) - mean;
-        p_[2 * quarter + t + 1] = run2;
-      }
-      if (t < last) {
-        run3 += detrended(3 * quarter + t) - mean;
-        p_[3 * quarter + t + 1] = run3;
-      }
-    }
-    const double offsets[3] = {run0, run0 + run1, run0 + run1 + run2};
-    for (std::size_t c = 1; c < 4; ++c) {
-      const std::size_t begin = std::min(len, c * quarter);
-      const std::size_t end = std::min(len, (c + 1) * quarter);
-      const double offset = offsets[c - 1];
-      for (std::size_t i = begin; i < end; ++i) p_[i + 1] += offset;
-    }
-    const double total = p_[len];
-    // Prefix of the 9m reflected sequence [reverse(y), y, reverse(y)], less the constant T
-    // (third differences cancel it): odd extensions of P about the folds at 3m and 6m.
-    for (std::size_t q = 0; q <= len; ++q) pe_[q] = -p_[len - q];
-    for (std::size_t q = len; q <= 2 * len; ++q) pe_[q] = p_[q - len];
-    for (std::size_t q = 2 * len; q <= 3 * len; ++q) pe_[q] = 2.0 * total - p_[3 * len - q];
-    const double* pe = pe_.data();
-    const double sum = detail::square_sum4(6 * m, [&](std::size_t j) {
-      return (pe[j + 3 * m] - pe[j]) - 3.0 * (pe[j + 2 * m] - pe[j + m]);
-    });
-    const double md = static_cast<double>(m);
-    return sum / (md * md * 6.0 * md);
-  }
-
- private:
-  std::size_t m_;
-  std::vector<double> p_;
-  std::vector<double> pe_;
-};
-
-// sum_n Mtot(n) over every 3m-point subsequence of u, the subsequences split over threads in
-// fixed blocks (the result does not depend on the thread count).
+// sum_n Mtot(n) over every 3m-point subsequence of u. Blocks of subsequences (the size depends
+// on m only) go to the threads, each with its own local prefix, so the result does not depend
+// on the thread count; the block spans about twice the subsequence length at most, which
+// bounds the size of the prefix sums.
 long double reflected_sum(std::span<const double> u, std::size_t m, unsigned threads) {
   const std::size_t count = u.size() - 3 * m + 1;
-  constexpr std::size_t kBlock = 256;
-  const std::size_t blocks = (count + kBlock - 1) / kBlock;
+  const std::size_t block = std::min<std::size_t>(512, (std::max<std::size_t>(3 * m, 8) + 7) / 8 * 8);
+  const std::size_t blocks = (count + block - 1) / block;
   std::vector<long double> partial(blocks, 0.0L);
   const unsigned workers = (count * m < 200000) ? 1 : threads;
-  // One kernel per block keeps the scratch local; its allocation is O(m), small next to O(m) per
-  // subsequence times the block size.
   detail::parallel_for(blocks, workers, [&](std::size_t b) {
-    ReflectedKernel kernel(m);
-    const std::size_t end = std::min(count, (b + 1) * kBlock);
-    long double sum = 0.0L;
-    for (std::size_t n = b * kBlock; n < end; ++n) sum += kernel.subsequence(u.data() + n);
-    partial[b] = sum;
+    const std::size_t first = b * block;
+    const std::size_t windows = std::min(count - first, block);
+    const auto ul = local_prefix(u, first, windows + 3 * m + 8);
+    partial[b] = detail::reflected_window_sum(ul.data(), m, windows);
   });
   long double total = 0.0L;
   for (const long double p : partial) total += p;

@@ -100,6 +100,18 @@ TEST(Total, FastEqualsDefinitionWithLargeOffset) {
   }
 }
 
+// Several blocks of subsequences (512 per block), a partial last group of lanes, and a long
+// subsequence: the block-local prefix sums and the lane padding must not show.
+TEST(Total, FastEqualsDefinitionAcrossBlocksAndLanes) {
+  const auto x = offset_phase(1500, 13);
+  for (const std::size_t m : {5u, 64u, 171u}) {
+    const double ref = test::reference_mtotdev(x, 1.0, m);
+    EXPECT_NEAR(one(mtotdev, x, m), ref, 1e-10 * ref) << "mtotdev m=" << m;
+    const double href = test::reference_htotdev(x, 1.0, m);
+    EXPECT_NEAR(one(htotdev, x, m), href, 1e-10 * href) << "htotdev m=" << m;
+  }
+}
+
 TEST(Total, ThreadCountDoesNotChangeResults) {
   const auto x = offset_phase(3000, 5);
   const std::size_t factors[3] = {8, 64, 512};
