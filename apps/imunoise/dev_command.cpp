@@ -35,6 +35,7 @@ struct DevOptionsCli {
   std::string format = "table";
   unsigned threads = 0;
   double time_budget_s = 300.0;
+  std::string theobr_ratios = "taylor-howe";
 };
 
 struct Curve {
@@ -44,8 +45,15 @@ struct Curve {
   std::string unit;
   std::vector<PointConfidence> confidence;  // empty with --no-ci
   std::vector<std::size_t> skipped;  // factors left out by --time-budget
-  std::string note;                  // why, and how to get them
+  std::string note;                  // why, and how to get them; or how it was computed
+  std::optional<TheoBiasFactor> theobr_factor;
 };
+
+std::size_t minimum_rate_samples(Estimator estimator) {
+  std::size_t n_phase = 2;
+  while (max_averaging_factor(estimator, n_phase) == 0) ++n_phase;
+  return n_phase - 1;
+}
 
 nlohmann::json json_number(double v) {
   return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
@@ -77,9 +85,11 @@ std::string format_json(const PhaseRecord& record, const std::vector<Curve>& cur
     }
     object["points"] = std::move(points);
     if (curve.label != estimator_name(curve.estimator)) object["bias_corrected"] = true;
-    if (!curve.skipped.empty()) {
-      object["skipped_factors"] = curve.skipped;
-      object["note"] = curve.note;
+    if (!curve.skipped.empty()) object["skipped_factors"] = curve.skipped;
+    if (!curve.note.empty()) object["note"] = curve.note;
+    if (curve.theobr_factor) {
+      object["theobr_bias_factor"] = {{"avar_over_theo1", curve.theobr_factor->avar_over_theo1},
+                                      {"ratios", curve.theobr_factor->ratios}};
     }
     if (record.timing) {
       const auto& t = *record.timing;
@@ -156,6 +166,7 @@ void run_dev(const DevOptionsCli& options) {
   }
   const std::optional<int> forced_alpha =
       options.noise_type.empty() ? std::nullopt : std::optional<int>(parse_noise_type(options.noise_type));
+  const TheoBrRatios theobr_ratios = parse_theobr_ratios(options.theobr_ratios);
   const PhaseRecord record = load_phase(options.input);
   const double tau0_s = 1.0 / record.rate_hz;
 
@@ -165,18 +176,23 @@ void run_dev(const DevOptionsCli& options) {
     if (max_m == 0) {
       throw InputError(record.source + ": " + std::to_string(record.n_samples) +
                        " samples are too few for " + std::string(estimator_name(estimator)) +
-                       " (it needs at least " + (estimator == Estimator::hdev || estimator == Estimator::ohdev ||
-                                        estimator == Estimator::htotdev
-                                    ? "3" : "2") +
+                       " (it needs at least " + std::to_string(minimum_rate_samples(estimator)) +
                        " rate samples); record longer");
     }
     const auto requested =
         estimator_averaging_factors(estimator, grid, record.rate_hz, record.phase_si.size());
     const BudgetSplit split =
-        split_by_budget(estimator, record.phase_si.size(), requested, options.time_budget_s);
+        split_by_budget(estimator, record.phase_si.size(), requested, options.time_budget_s,
+                        theobr_ratios);
     const auto& factors = split.kept;
     std::string skip_note;
-    if (!split.skipped.empty()) {
+    if (split.fixed_cost_too_high) {
+      skip_note = fmt::format(
+          "{} skipped: its bias factor alone (Theo1 at {} factors, cost growing as N^3) would take "
+          "{}; raise --time-budget (0: no limit), or use theo1 with --bias-correct",
+          estimator_name(estimator), record.phase_si.size() / 6, duration_text(split.skipped_seconds));
+      fmt::print(stderr, "imunoise: warning: {}\n", skip_note);
+    } else if (!split.skipped.empty()) {
       skip_note = fmt::format(
           "{} at m >= {} (tau >= {:.6g} s) skipped: those {} taus would take {} (its cost grows "
           "as N m per tau); raise --time-budget (0: no limit) or choose taus with --taus/--af",
@@ -185,7 +201,19 @@ void run_dev(const DevOptionsCli& options) {
           split.skipped.size(), duration_text(split.skipped_seconds));
       fmt::print(stderr, "imunoise: warning: {}\n", skip_note);
     }
-    auto points = compute_deviation(estimator, record.phase_si, tau0_s, factors, {options.threads});
+    std::vector<DevPoint> points;
+    std::optional<TheoBiasFactor> theobr_factor;
+    if (estimator == Estimator::theobr && !factors.empty()) {
+      TheoBiasFactor kf;
+      points = theobr(record.phase_si, tau0_s, factors, {options.threads}, theobr_ratios, &kf);
+      theobr_factor = kf;
+      skip_note = fmt::format(
+          "ThêoBR variance = Theo1 variance x {:.6g} (Avar/Theo1 averaged over {} taus, {} rule){}{}",
+          kf.avar_over_theo1, kf.ratios, options.theobr_ratios, skip_note.empty() ? "" : "; ",
+          skip_note);
+    } else if (!factors.empty()) {
+      points = compute_deviation(estimator, record.phase_si, tau0_s, factors, {options.threads});
+    }
     std::vector<PointConfidence> confidence;
     if (!options.no_ci) {
       confidence = fill_confidence(points, estimator, record.phase_si, options.ci_level, forced_alpha);
@@ -208,10 +236,10 @@ void run_dev(const DevOptionsCli& options) {
       apply_bias_correction(corrected, estimator, record.phase_si.size());
     }
     curves.push_back({estimator, name, std::move(points), unit_label(record, integrated), confidence,
-                      split.skipped, skip_note});
+                      split.skipped, skip_note, theobr_factor});
     if (options.bias_correct && has_correction) {
       curves.push_back({estimator, name + "-bc", std::move(corrected), unit_label(record, integrated),
-                        std::move(confidence), split.skipped, skip_note});
+                        std::move(confidence), split.skipped, skip_note, std::nullopt});
     }
   }
   std::string text;
@@ -239,7 +267,7 @@ void setup_dev(CLI::App& app) {
   add_input_options(*command, options->input);
   command->add_option("--estimator", options->estimators,
                       "estimator(s): adev oadev mdev tdev hdev ohdev totdev mtotdev ttotdev htotdev "
-                      "theo1 mtie tierms, comma-separated, or all")
+                      "theo1 theobr mtie tierms, comma-separated, or all")
       ->capture_default_str();
   command->add_option("--taus", options->taus,
                       "tau grid: octave, decade, all, perdecade:K, or taus in s (0.1,1,10)")
@@ -257,10 +285,15 @@ void setup_dev(CLI::App& app) {
   command->add_option("--format", options->format, "table, json or csv")->capture_default_str();
   command->add_option("--threads", options->threads, "worker threads (0: all cores)");
   command->add_option("--time-budget", options->time_budget_s,
-                      "seconds (estimated) that mtotdev, ttotdev, htotdev and theo1 may take "
+                      "seconds (estimated) that mtotdev, ttotdev, htotdev, theo1 and theobr may take "
                       "each; their longest taus beyond it are skipped with a note (0: no limit)")
       ->capture_default_str()
       ->check(CLI::NonNegativeNumber);
+  command->add_option("--theobr-ratios", options->theobr_ratios,
+                      "how many Avar/Theo1 ratios ThêoBR's bias factor averages: taylor-howe "
+                      "(N/30 - 3, Avar out to a tenth of the record) or stable32 (N/6 - 3, "
+                      "Stable32's Run/Plot)")
+      ->capture_default_str();
   command->add_option("-o,--output", options->output.path, "write to FILE instead of standard output");
   command->add_flag("--force", options->output.force, "replace an existing output file");
   command->callback([options] { run_dev(*options); });

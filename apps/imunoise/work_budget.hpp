@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "imunoise/estimator.hpp"
+#include "imunoise/theo.hpp"
 
 namespace imunoise::cli {
 
@@ -17,16 +18,22 @@ namespace imunoise::cli {
 /// estimators that cost O(N) per tau.
 double estimated_seconds(Estimator estimator, std::size_t n_phase, std::size_t m);
 
+/// Estimated seconds an estimator spends once per curve, whatever the taus: ThêoBR's bias
+/// factor (Theo1 at about N/6 factors); zero for the others.
+double fixed_seconds(Estimator estimator, std::size_t n_phase, TheoBrRatios ratios);
+
 struct BudgetSplit {
   std::vector<std::size_t> kept;     // ascending factors whose running total fits the budget
   std::vector<std::size_t> skipped;  // the rest
   double skipped_seconds = 0.0;      // their estimated cost
+  bool fixed_cost_too_high = false;  // the per-curve cost alone exceeds the budget
 };
 
 /// Keeps factors (in the given ascending order) while their cumulative estimated cost stays
 /// within budget_s; budget_s <= 0 keeps everything.
 BudgetSplit split_by_budget(Estimator estimator, std::size_t n_phase,
-                            std::span<const std::size_t> factors, double budget_s);
+                            std::span<const std::size_t> factors, double budget_s,
+                            TheoBrRatios ratios = TheoBrRatios::taylor_howe);
 
 /// "about 2.1 h", "about 40 min", "about 12 s".
 std::string duration_text(double seconds);

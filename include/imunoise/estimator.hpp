@@ -19,6 +19,7 @@ enum class Estimator {
   ttotdev,  ///< time total deviation, tau/sqrt(3) * mtotdev (angle units)
   htotdev,  ///< Hadamard total deviation (total.hpp)
   theo1,    ///< Theo1 deviation, tau = 0.75 m tau0, even m only (theo.hpp)
+  theobr,   ///< bias-removed Theo1 (ThêoBR): theo1 scaled by the record's Avar/Theo1 (theo.hpp)
   mtie,     ///< maximum time interval error (angle units; time_error.hpp)
   tierms,   ///< rms time interval error (angle units; time_error.hpp)
 };
@@ -26,10 +27,10 @@ enum class Estimator {
 /// True for the estimators reported in the angle (integrated) unit: tdev, ttotdev, mtie, tierms.
 bool reports_angle(Estimator estimator);
 
-/// True for the estimators whose averaging factor must be even (theo1).
+/// True for the estimators whose averaging factor must be even (theo1, theobr).
 bool requires_even_factor(Estimator estimator);
 
-/// tau / (m tau0): 0.75 for theo1 (Stable32 convention), 1 for all others.
+/// tau / (m tau0): 0.75 for theo1 and theobr (Stable32 convention), 1 for all others.
 double tau_per_factor(Estimator estimator);
 
 /// Every estimator this build provides, in display order.

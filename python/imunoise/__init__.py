@@ -8,7 +8,8 @@ Deviations are in the unit of the rate; taus in seconds.
 from ._imunoise import InputError, deviation, simulate, simulate_preset
 
 __all__ = ["InputError", "deviation", "simulate", "simulate_preset", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev",
-           "totdev", "mtotdev", "ttotdev", "htotdev", "theo1", "mtie", "tierms"]
+           "totdev", "mtotdev", "ttotdev", "htotdev", "theo1", "theobr", "mtie",
+           "tierms"]
 
 
 def _estimator(name):
@@ -32,6 +33,8 @@ ttotdev = _estimator("ttotdev")
 htotdev = _estimator("htotdev")
 # Theo1: taus are 0.75 m / rate for even m (Stable32), e.g. 1.5, 3, 6, ... s at rate 1.
 theo1 = _estimator("theo1")
+# ThêoBR: theo1 scaled by the record's Avar/Theo1 (Taylor & Howe ratio rule), same taus.
+theobr = _estimator("theobr")
 # MTIE and TIE rms are in the angle (phase) unit.
 mtie = _estimator("mtie")
 tierms = _estimator("tierms")

@@ -28,6 +28,16 @@ def test_published(name, tau, value, rel):
     assert devs[0] == pytest.approx(value, rel=rel)
 
 
+def test_theobr_is_theo1_times_a_constant():
+    y = nbs14_1000()
+    t_taus, t_devs, _, _ = imunoise.theo1(y, rate=1.0, data_type="freq")
+    b_taus, b_devs, _, _ = imunoise.theobr(y, rate=1.0, data_type="freq")
+    assert list(b_taus) == list(t_taus)
+    ratio = np.asarray(b_devs) / np.asarray(t_devs)
+    assert ratio == pytest.approx(np.full(len(ratio), ratio[0]), rel=1e-12)
+    assert ratio[0] ** 2 == pytest.approx(1.0857, abs=5e-4)  # white FM: Avar/Theo1 near 1
+
+
 def test_theo1_octave_grid_uses_even_factors():
     taus, devs, errs, ns = imunoise.theo1(nbs14_1000(), rate=1.0, data_type="freq")
     assert list(taus[:3]) == [1.5, 3.0, 6.0]

@@ -298,6 +298,7 @@ std::optional<Estimator> finite_difference_proxy(Estimator estimator) {
   switch (estimator) {
     case Estimator::totdev:
     case Estimator::theo1:
+    case Estimator::theobr:
       return Estimator::oadev;
     case Estimator::mtotdev:
     case Estimator::ttotdev:
@@ -315,7 +316,7 @@ std::optional<Estimator> finite_difference_proxy(Estimator estimator) {
 bool alpha_in_domain(Estimator estimator, int alpha) {
   const auto proxy = finite_difference_proxy(estimator);
   if (!proxy) return false;
-  if (estimator == Estimator::theo1 && (alpha < -2 || alpha > 2)) return false;
+  if (requires_even_factor(estimator) && (alpha < -2 || alpha > 2)) return false;
   const auto v = difference_variance(*proxy);
   if (!v) return false;
   return alpha >= kMinNoiseAlpha && alpha <= kMaxNoiseAlpha && alpha + 2 * v->d > 1;
@@ -456,7 +457,8 @@ Edf total_edf(Estimator estimator, int alpha, std::size_t m, std::size_t n_phase
       const TableEntry t = kHtotvar[static_cast<std::size_t>(-alpha)];
       return checked(ratio / (t.a0 + t.a1 / ratio), EdfMethod::sp1065);
     }
-    case Estimator::theo1: {
+    case Estimator::theo1:
+    case Estimator::theobr: {  // ThêoBR is theo1 times a constant: the same EDF
       const double r = 0.75 * mm;
       double value = kNaN;
       switch (alpha) {

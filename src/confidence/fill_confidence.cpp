@@ -14,7 +14,7 @@ std::string domain_text(Estimator estimator) {
   const auto proxy = finite_difference_proxy(estimator);
   const auto v = proxy ? difference_variance(*proxy) : std::nullopt;
   if (!v) return "no noise type";
-  if (estimator == Estimator::theo1) return "-2 .. 2";
+  if (requires_even_factor(estimator)) return "-2 .. 2";
   return std::to_string(std::max(kMinNoiseAlpha, 2 - 2 * v->d)) + " .. 2";
 }
 

@@ -107,6 +107,7 @@ std::vector<DevPoint> compute_deviation(Estimator estimator, std::span<const dou
     case Estimator::ttotdev: return ttotdev(phase, tau0_s, factors, options);
     case Estimator::htotdev: return htotdev(phase, tau0_s, factors, options);
     case Estimator::theo1: return theo1(phase, tau0_s, factors, options);
+    case Estimator::theobr: return theobr(phase, tau0_s, factors, options);
     case Estimator::mtie: return mtie(phase, tau0_s, factors, options);
     case Estimator::tierms: return tierms(phase, tau0_s, factors, options);
   }

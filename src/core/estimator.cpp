@@ -20,7 +20,8 @@ constexpr std::array kEstimators{
     EstimatorInfo{Estimator::hdev, "hdev"},   EstimatorInfo{Estimator::ohdev, "ohdev"},
     EstimatorInfo{Estimator::totdev, "totdev"}, EstimatorInfo{Estimator::mtotdev, "mtotdev"},
     EstimatorInfo{Estimator::ttotdev, "ttotdev"}, EstimatorInfo{Estimator::htotdev, "htotdev"},
-    EstimatorInfo{Estimator::theo1, "theo1"}, EstimatorInfo{Estimator::mtie, "mtie"},
+    EstimatorInfo{Estimator::theo1, "theo1"}, EstimatorInfo{Estimator::theobr, "theobr"},
+    EstimatorInfo{Estimator::mtie, "mtie"},
     EstimatorInfo{Estimator::tierms, "tierms"},
 };
 
@@ -97,7 +98,9 @@ std::size_t term_count(Estimator estimator, std::size_t n_phase, std::size_t m) 
       if (m == 1) return n_phase >= 4 ? n_phase - 3 : 0;
       return n_phase >= 3 * m + 1 ? n_phase - 3 * m : 0;
     case Estimator::theo1:  // (N - m) start points times m/2 spans, as Stable32 counts
-      return (m % 2 == 0 && m < n_phase) ? (n_phase - m) * (m / 2) : 0;
+    case Estimator::theobr:
+      return (m % 2 == 0 && m <= max_averaging_factor(estimator, n_phase)) ? (n_phase - m) * (m / 2)
+                                                                            : 0;
     case Estimator::mtie:
     case Estimator::tierms:  // windows of m + 1 points
       return m < n_phase ? n_phase - m : 0;
@@ -128,6 +131,8 @@ std::size_t max_averaging_factor(Estimator estimator, std::size_t n_phase) {
       const std::size_t m = n_phase - 1;  // largest m with i + m <= N - 1 for i = 0
       return m >= 2 ? m - m % 2 : 0;
     }
+    case Estimator::theobr:  // its bias factor needs floor(N/30) - 3 >= 0 (theo.hpp)
+      return n_phase >= 90 ? max_averaging_factor(Estimator::theo1, n_phase) : 0;
     case Estimator::mtie:
     case Estimator::tierms:
       return n_phase - 1;
@@ -140,8 +145,10 @@ bool reports_angle(Estimator estimator) {
          estimator == Estimator::mtie || estimator == Estimator::tierms;
 }
 
-bool requires_even_factor(Estimator estimator) { return estimator == Estimator::theo1; }
+bool requires_even_factor(Estimator estimator) {
+  return estimator == Estimator::theo1 || estimator == Estimator::theobr;
+}
 
-double tau_per_factor(Estimator estimator) { return estimator == Estimator::theo1 ? 0.75 : 1.0; }
+double tau_per_factor(Estimator estimator) { return requires_even_factor(estimator) ? 0.75 : 1.0; }
 
 }  // namespace imunoise

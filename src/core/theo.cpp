@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "domain_check.hpp"
+#include "imunoise/allan.hpp"
 #include "imunoise/error.hpp"
 #include "parallel.hpp"
 #include "square_sum.hpp"
@@ -73,10 +74,82 @@ std::vector<DevPoint> theo1(std::span<const double> phase, double tau0_s,
   return points;
 }
 
+namespace {
+
+// The ratio indices i = 0..n whose Avar factor 9 + 3i has a term.
+std::size_t theobr_ratio_count(std::size_t n_phase, TheoBrRatios ratios) {
+  const std::size_t divisor = ratios == TheoBrRatios::stable32 ? 6 : 30;
+  if (n_phase < 90 || n_phase / divisor < 3) return 0;
+  const std::size_t n = n_phase / divisor - 3;
+  const std::size_t avar_max = (n_phase - 1) / 2;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i <= n && 9 + 3 * i <= avar_max; ++i) ++count;
+  return count;
+}
+
+}  // namespace
+
+TheoBrRatios parse_theobr_ratios(std::string_view name) {
+  if (name == "taylor-howe") return TheoBrRatios::taylor_howe;
+  if (name == "stable32") return TheoBrRatios::stable32;
+  throw InputError("unknown ThêoBR ratio rule '" + std::string(name) +
+                   "'; known: taylor-howe (n = N/30 - 3), stable32 (n = N/6 - 3)");
+}
+
+TheoBiasFactor theobr_bias_factor(std::span<const double> phase, double tau0_s,
+                                  const DevOptions& options, TheoBrRatios rule) {
+  const std::size_t ratios = theobr_ratio_count(phase.size(), rule);
+  if (ratios == 0) {
+    throw InputError("theobr: its bias factor needs at least 90 phase samples, got " +
+                     std::to_string(phase.size()) + "; use theo1 (no bias removal) instead");
+  }
+  std::vector<std::size_t> avar_factors(ratios);
+  std::vector<std::size_t> theo_factors(ratios);
+  for (std::size_t i = 0; i < ratios; ++i) {
+    avar_factors[i] = 9 + 3 * i;
+    theo_factors[i] = 12 + 4 * i;
+  }
+  const auto avar = oadev(phase, tau0_s, avar_factors, options);
+  const auto theo = theo1(phase, tau0_s, theo_factors, options);
+  long double sum = 0.0L;
+  for (std::size_t i = 0; i < ratios; ++i) {
+    const double ratio = avar[i].dev / theo[i].dev;
+    sum += static_cast<long double>(ratio) * ratio;
+  }
+  const double kf = static_cast<double>(sum / static_cast<long double>(ratios));
+  if (!std::isfinite(kf) || !(kf > 0.0)) {
+    throw InputError("theobr: the bias factor Avar/Theo1 is not a positive number (constant data?)");
+  }
+  return {kf, ratios};
+}
+
+std::vector<DevPoint> theobr(std::span<const double> phase, double tau0_s,
+                             std::span<const std::size_t> factors, const DevOptions& options,
+                             TheoBrRatios ratios, TheoBiasFactor* bias_factor) {
+  detail::check_factors(Estimator::theobr, phase, tau0_s, factors);
+  const TheoBiasFactor kf = theobr_bias_factor(phase, tau0_s, options, ratios);
+  auto points = theo1(phase, tau0_s, factors, options);
+  const double scale = std::sqrt(kf.avar_over_theo1);
+  for (auto& point : points) point.dev *= scale;
+  if (bias_factor != nullptr) *bias_factor = kf;
+  return points;
+}
+
+double theobr_bias_factor_terms(std::size_t n_phase, TheoBrRatios rule) {
+  const std::size_t ratios = theobr_ratio_count(n_phase, rule);
+  double terms = 0.0;
+  for (std::size_t i = 0; i < ratios; ++i) {
+    const double m = static_cast<double>(12 + 4 * i);
+    terms += (static_cast<double>(n_phase) - m) * 0.5 * m;
+  }
+  return terms;
+}
+
 std::vector<std::size_t> estimator_averaging_factors(Estimator estimator, const TauGrid& grid,
                                                      double rate_hz, std::size_t n_phase) {
   const std::size_t max_m = max_averaging_factor(estimator, n_phase);
-  if (estimator != Estimator::theo1) return averaging_factors(grid, rate_hz, max_m);
+  if (!requires_even_factor(estimator)) return averaging_factors(grid, rate_hz, max_m);
+  const std::string name(estimator_name(estimator));
   std::set<std::size_t> out;
   switch (grid.kind) {
     case TauGrid::Kind::octave:
@@ -104,7 +177,7 @@ std::vector<std::size_t> estimator_averaging_factors(Estimator estimator, const 
     case TauGrid::Kind::factors:
       for (const std::size_t m : grid.factors) {
         if (m == 0 || m % 2 != 0 || m > max_m) {
-          throw InputError("theo1: averaging factor " + std::to_string(m) +
+          throw InputError(name + ": averaging factor " + std::to_string(m) +
                            " must be even and in 2.." + std::to_string(max_m));
         }
         out.insert(m);
@@ -116,9 +189,9 @@ std::vector<std::size_t> estimator_averaging_factors(Estimator estimator, const 
         const double m = std::round(exact);
         if (!(m >= 2.0) || std::fabs(exact - m) > 1e-6 * m || static_cast<std::size_t>(m) % 2 != 0 ||
             m > static_cast<double>(max_m)) {
-          throw InputError("theo1: tau = " + std::to_string(tau_s) +
+          throw InputError(name + ": tau = " + std::to_string(tau_s) +
                            " s is not 0.75 m / rate for an even m in 2.." + std::to_string(max_m) +
-                           " (theo1 taus are 1.5, 3, 4.5, ... sample intervals)");
+                           " (" + name + " taus are 1.5, 3, 4.5, ... sample intervals)");
         }
         out.insert(static_cast<std::size_t>(m));
       }

@@ -32,7 +32,7 @@ TEST(CliDevTotal, AllEstimatorsThroughJson) {
                           "--taus", "octave", "--format", "json"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  ASSERT_EQ(j.size(), 13u);
+  ASSERT_EQ(j.size(), 14u);
   bool saw_theo = false;
   for (const auto& curve : j) {
     const std::string name = curve["estimator"];
@@ -89,6 +89,37 @@ namespace {
 // mtotdev on 1000 points at octave taus: m = 1..256, the estimate (N - 3m + 1) 6m ns sums to
 // ~0.5 ms; a 0.1 ms budget keeps the short taus and skips the long ones with a note, in the
 // JSON and on standard error, and the run still succeeds.
+TEST(CliDevTotal, TheoBrReproducesStable32AndStatesItsFactor) {
+  test::TempDir dir;
+  const auto file = dir.write("nbs14.txt", nbs14_text());
+  const auto r = test::run_cli({"dev", file, "--rate", "1", "--estimator", "theobr", "--af", "10",
+                                "--theobr-ratios", "stable32", "--format", "json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_NEAR(j["points"][0]["dev"].get<double>(), 8.3520e-02, 0.00005e-02);
+  EXPECT_EQ(j["theobr_bias_factor"]["ratios"], 164);
+  EXPECT_NE(j["note"].get<std::string>().find("stable32 rule"), std::string::npos);
+  const auto bad = test::run_cli({"dev", file, "--rate", "1", "--estimator", "theobr",
+                                  "--theobr-ratios", "nist"});
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("taylor-howe"), std::string::npos) << bad.err;
+}
+
+TEST(CliDevTotal, TheoBrOverBudgetIsSkippedWholeWithANote) {
+  test::TempDir dir;
+  const auto file = dir.write("nbs14.txt", nbs14_text());
+  const auto r = test::run_cli({"dev", file, "--rate", "1", "--estimator", "oadev,theobr",
+                                "--format", "json", "--no-ci", "--time-budget", "1e-6"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j.size(), 2u);
+  EXPECT_FALSE(j[0]["points"].empty());
+  EXPECT_TRUE(j[1]["points"].empty());
+  EXPECT_FALSE(j[1]["skipped_factors"].empty());
+  EXPECT_NE(j[1]["note"].get<std::string>().find("bias factor"), std::string::npos);
+  EXPECT_NE(r.err.find("theobr skipped"), std::string::npos) << r.err;
+}
+
 TEST(CliDevTotal, TimeBudgetSkipsTheLongestTausWithANote) {
   test::TempDir dir;
   const auto file = dir.write("nbs14.txt", nbs14_text());
