@@ -22,15 +22,15 @@
 //   Ratios whose Avar has no term (9 + 3i > (N-1)/2) are left out.
 // Domain: N >= 90 (n >= 0 for taylor_howe), m as Theo1.
 // Cost: kf needs Theo1 at n + 1 factors up to 4n + 12: about 0.0011 N^3 terms for
-// taylor_howe (0.15 s at N = 1e4, 2.4 min at 1e5 on two cores) and 0.015 N^3 for stable32.
-// The sums are exact; no decimation is used.
+// taylor_howe (measured on two cores: 0.24 s at N = 1e4, 3.5 s at 3e4; about 2.4 min at 1e5)
+// and 0.015 N^3 for stable32 (2.3 s at 1e4). The sums are exact; no decimation is used.
 //
 // Algorithm: for each d, one contiguous pass over i of four phase streams (vectorized; an AVX2
 // clone is chosen at run time when the CPU has it), the d's spread over threads. O(N m) per
-// factor, the cost of the definition itself: the exact Theo1 has no faster formulation known to
-// us. Taylor & Howe's "Fast TheoBR" (IEEE UFFC 2010) reaches O(N log N) by evaluating Theo1 on
-// phase decimated by averaging, which is an approximation of a different statistic; it is not
-// used here, so that theo1 stays the exact SP 1065 quantity.
+// factor, the cost of the definition itself. Lewis (IEEE UFFC 2020) computes Theo1 at every
+// even m in O(N^2) in all from running lag products of the phase; that would make ThêoBR's kf
+// O(N^2), but the expanded products carry an error of about eps |x|^2 / (increment at lag m)^2
+// relative, (N/m)^3 eps for random-walk FM (an estimate, not measured), so it is not used.
 // Accuracy: agrees with the literal double sum (tests/core/reference_total.hpp) to 1e-12
 // relative on random data with a large offset; Stable32's PHASE.DAT value to its 5 digits.
 #include <cstddef>
