@@ -9,8 +9,8 @@
 // (+- 0.056 at 68.3 %, +- 0.026 at 95 %). The expectation is not known in closed form for these
 // biased estimators; it is the mean variance over 4000 other records (its relative error,
 // sqrt(2 / (EDF 4000)), is at most 1 % of the variance at EDF 5, which moves a cell's coverage
-// by under 0.01). Measured (docs/confidence.md): every cell inside; the smallest margin is Theo1,
-// flicker FM, m = 128 at 0.636 (68.3 %).
+// by under 0.01). Measured (docs/confidence.md): every cell inside; the smallest margin is
+// mtotdev, random-walk FM, m = 128 at 0.634 (68.3 %).
 // The suite name starts with "Slow": ctest labels it `slow` (about 8 s in Release; the
 // sanitizer run skips it).
 #include <gtest/gtest.h>
