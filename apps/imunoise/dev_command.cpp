@@ -190,7 +190,8 @@ void run_dev(const DevOptionsCli& options) {
       skip_note = fmt::format(
           "{} skipped: its bias factor alone (Theo1 at {} factors, cost growing as N^3) would take "
           "{}; raise --time-budget (0: no limit), or use theo1 with --bias-correct",
-          estimator_name(estimator), record.phase_si.size() / 6, duration_text(split.skipped_seconds));
+          estimator_name(estimator), theobr_ratio_count(record.phase_si.size(), theobr_ratios),
+          duration_text(split.skipped_seconds));
       fmt::print(stderr, "imunoise: warning: {}\n", skip_note);
     } else if (!split.skipped.empty()) {
       skip_note = fmt::format(

@@ -59,6 +59,9 @@ enum class TheoBrRatios { taylor_howe, stable32 };
 /// Parses "taylor-howe" or "stable32"; throws InputError otherwise.
 TheoBrRatios parse_theobr_ratios(std::string_view name);
 
+/// Number of Avar/Theo1 ratios kf averages over n_phase points (0: too short for ThêoBR).
+std::size_t theobr_ratio_count(std::size_t n_phase, TheoBrRatios ratios);
+
 /// kf of the record (see above); throws InputError for fewer than 90 phase points.
 TheoBiasFactor theobr_bias_factor(std::span<const double> phase, double tau0_s,
                                   const DevOptions& options = {},

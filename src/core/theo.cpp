@@ -74,9 +74,6 @@ std::vector<DevPoint> theo1(std::span<const double> phase, double tau0_s,
   return points;
 }
 
-namespace {
-
-// The ratio indices i = 0..n whose Avar factor 9 + 3i has a term.
 std::size_t theobr_ratio_count(std::size_t n_phase, TheoBrRatios ratios) {
   const std::size_t divisor = ratios == TheoBrRatios::stable32 ? 6 : 30;
   if (n_phase < 90 || n_phase / divisor < 3) return 0;
@@ -86,8 +83,6 @@ std::size_t theobr_ratio_count(std::size_t n_phase, TheoBrRatios ratios) {
   for (std::size_t i = 0; i <= n && 9 + 3 * i <= avar_max; ++i) ++count;
   return count;
 }
-
-}  // namespace
 
 TheoBrRatios parse_theobr_ratios(std::string_view name) {
   if (name == "taylor-howe") return TheoBrRatios::taylor_howe;
