@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/nbs14.hpp"
+#include "core/offset_random_walk.hpp"
 #include "core/reference_total.hpp"
 #include "imunoise/deviation.hpp"
 #include "imunoise/error.hpp"
@@ -44,14 +45,7 @@ TEST(TheoBr, Stable32PhaseDat) {
 // kf against the literal definition: long-double Avar and Theo1 sums per ratio, on random-walk
 // phase with a large offset; ThêoBR is theo1 times sqrt(kf) at every m.
 TEST(TheoBr, BiasFactorEqualsDefinition) {
-  std::mt19937_64 rng(5);
-  std::normal_distribution<double> g(0.0, 1.0);
-  std::vector<double> x(400);
-  double s = 0.0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    s += g(rng);
-    x[k] = 5e6 - 1e3 * static_cast<double>(k) + s;
-  }
+  const auto x = test::offset_random_walk(400, 5, 5e6, -1e3);
   for (const auto rule : {TheoBrRatios::taylor_howe, TheoBrRatios::stable32}) {
     const std::size_t n = rule == TheoBrRatios::stable32 ? x.size() / 6 - 3 : x.size() / 30 - 3;
     long double sum = 0.0L;
@@ -94,14 +88,7 @@ TEST(TheoBr, DomainAndErrors) {
 }
 
 TEST(Theo1, FastEqualsDefinitionWithLargeOffset) {
-  std::mt19937_64 rng(3);
-  std::normal_distribution<double> g(0.0, 1.0);
-  std::vector<double> x(500);
-  double s = 0.0;
-  for (std::size_t k = 0; k < x.size(); ++k) {
-    s += g(rng);
-    x[k] = -3e7 + 2e4 * static_cast<double>(k) + s + g(rng);
-  }
+  const auto x = test::offset_random_walk(500, 3, -3e7, 2e4, 1.0);
   for (std::size_t m = 2; m < x.size(); m += (m < 20 ? 2 : 38)) {
     const std::size_t f[1] = {m};
     const double ref = test::reference_theo1(x, 0.01, m);

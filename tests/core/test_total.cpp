@@ -14,6 +14,7 @@
 #include "imunoise/phase.hpp"
 #include "imunoise/total.hpp"
 #include "core/nbs14.hpp"
+#include "core/offset_random_walk.hpp"
 #include "core/reference_total.hpp"
 
 namespace imunoise {
@@ -35,15 +36,7 @@ double one(std::vector<DevPoint> (*f)(std::span<const double>, double,
 
 // Random-walk phase (white FM) with a large constant and linear offset: the cancellation guard.
 std::vector<double> offset_phase(std::size_t n, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0.0, 1.0);
-  std::vector<double> x(n);
-  double s = 0.0;
-  for (std::size_t k = 0; k < n; ++k) {
-    s += g(rng);
-    x[k] = 1e6 + 1e3 * static_cast<double>(k) + s;
-  }
-  return x;
+  return test::offset_random_walk(n, seed, 1e6, 1e3);
 }
 
 TEST(Total, Nbs14TenPointTotdev) {
