@@ -13,6 +13,7 @@
 #include "imunoise/allan.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/fit/fit.hpp"
+#include "imunoise/fit/report.hpp"
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
 #include "input_options.hpp"
@@ -38,111 +39,29 @@ struct FitOptionsCli {
 
 std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.5g}", v) : "-"; }
 
-nlohmann::json num(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
-const Coefficient& coefficient(const NoiseCoefficients& c, int term) {
-  switch (term) {
-    case fit::kQ: return c.quantization;
-    case fit::kN: return c.random_walk;
-    case fit::kB: return c.bias_instability;
-    case fit::kK: return c.rate_random_walk;
-    default: return c.rate_ramp;
-  }
-}
-
-/// Unit names of the five coefficients in the input's unit system.
-std::vector<std::string> coefficient_units(const std::string& rate) {
-  const bool per_s = rate.size() > 2 && rate.compare(rate.size() - 2, 2, "/s") == 0;
-  if (per_s) {
-    const std::string base = rate.substr(0, rate.size() - 2);
-    return {base, base + "/sqrt(s)", rate, rate + "/sqrt(s)", base + "/s^2"};
-  }
-  return {rate + "*s", rate + "*sqrt(s)", rate, rate + "/sqrt(s)", rate + "/s"};
-}
-
-const CustomaryUnit& customary(int term) {
-  static const CustomaryUnit* units[fit::kTermCount] = {&customary_gyro_Q, &customary_gyro_N,
-                                                        &customary_gyro_B, &customary_gyro_K,
-                                                        &customary_gyro_R};
-  return *units[term];
-}
-
 bool gyro(const PhaseRecord& record) {
   return record.unit_given && record.rate_unit.quantity == Quantity::angular_rate;
 }
 
-nlohmann::json to_json(const PhaseRecord& record, const fit::FitOptions& options,
-                       const fit::FitResult& r) {
-  const double f = record.rate_unit.to_si;
-  const std::string rate = unit_label(record);
-  const auto names = coefficient_units(rate);
-  nlohmann::json terms = nlohmann::json::object();
-  for (int j = 0; j < fit::kTermCount; ++j) {
-    const auto& c = coefficient(r.coefficients, j);
-    nlohmann::json t{{"value", num(c.value / f)}, {"unit", names[static_cast<std::size_t>(j)]},
-                     {"ci_low", num(c.ci_low / f)}, {"ci_high", num(c.ci_high / f)},
-                     {"identified", c.identified}, {"fitted", r.terms[j].fitted},
-                     {"estimate", num(r.terms[j].estimate / f)}};
-    if (!c.note.empty()) t["note"] = c.note;
-    if (r.terms[j].tau_max_s > 0) {
-      t["dominates_tau_s"] = {r.terms[j].tau_min_s, r.terms[j].tau_max_s};
-    }
-    if (gyro(record)) {
-      const auto& cu = customary(j);
-      t["customary"] = {{"value", num(c.value / cu.to_si)}, {"unit", cu.name},
-                        {"ci_low", num(c.ci_low / cu.to_si)}, {"ci_high", num(c.ci_high / cu.to_si)}};
-    }
-    terms[fit::term_name(j)] = std::move(t);
-  }
-  const auto& s = r.summary;
-  nlohmann::json residuals = nlohmann::json::array();
-  for (const auto& p : r.residuals) {
-    residuals.push_back({{"tau_s", p.tau_s}, {"adev", num(std::sqrt(p.avar) / f)},
-                         {"adev_model", num(std::sqrt(p.avar_model) / f)},
-                         {"normalized_residual", num(p.normalized)},
-                         {"dominant_term", p.dominant_term >= 0 ? nlohmann::json(fit::term_name(p.dominant_term))
-                                                                : nlohmann::json(nullptr)}});
-  }
-  nlohmann::json out{
-      {"unit", rate},
-      {"method", fit::method_name(options.method)},
-      {"level", options.level},
-      {"source", record.source},
-      {"rate_hz", record.rate_hz},
-      {"n_samples", record.n_samples},
-      {"terms", std::move(terms)},
-      {"paper", {{"tau_opt_s", num(r.tau_opt_s)},
-                 {"adev_min_eq2", num(std::sqrt(r.avar_min_eq2) / f)},
-                 {"adev_min_measured", num(std::sqrt(r.avar_min_measured) / f)},
-                 {"tau_min_measured_s", num(r.tau_min_measured_s)},
-                 {"note", "eqs. 1-2 use the fitted N and K only (white noise + rate random walk); "
-                          "the measured minimum includes every term"}}},
-      {"diagnostics", {{"termination", fit::termination_name(s.termination)},
-                       {"message", s.message},
-                       {"iterations", s.iterations},
-                       {"taus_used", s.points_used},
-                       {"chi2", num(s.chi2)},
-                       {"dof", s.dof},
-                       {"chi2_dof", num(s.chi2_dof)},
-                       {"warnings", s.warnings},
-                       {"residuals", std::move(residuals)}}}};
-  return out;
+fit::RecordInfo record_info(const PhaseRecord& record) {
+  return {record.source, record.rate_hz, record.n_samples, record.rate_unit, unit_label(record),
+          gyro(record)};
 }
 
 std::string to_table(const PhaseRecord& record, const fit::FitOptions& options,
                      const fit::FitResult& r) {
   const double f = record.rate_unit.to_si;
-  const auto names = coefficient_units(unit_label(record));
+  const auto names = fit::coefficient_units(unit_label(record));
   std::string out = fmt::format("# {}: {} samples at {:.9g} Hz; method {}, {:g}% intervals\n",
                                 record.source, record.n_samples, record.rate_hz,
                                 fit::method_name(options.method), 100 * options.level);
   out += fmt::format("{:<4} {:>13} {:>13} {:>13} {:<18} {:>5}  {}\n", "term", "value", "ci_low",
                      "ci_high", "unit", "ident", "customary");
   for (int j = 0; j < fit::kTermCount; ++j) {
-    const auto& c = coefficient(r.coefficients, j);
+    const auto& c = fit::coefficient(r.coefficients, j);
     std::string cust;
     if (gyro(record)) {
-      const auto& cu = customary(j);
+      const auto& cu = fit::customary_unit(j);
       cust = fmt::format("{} [{}, {}] {}", cell(c.value / cu.to_si), cell(c.ci_low / cu.to_si),
                          cell(c.ci_high / cu.to_si), cu.name);
     }
@@ -152,13 +71,16 @@ std::string to_table(const PhaseRecord& record, const fit::FitOptions& options,
                        c.identified ? "yes" : "no", cust);
   }
   for (int j = 0; j < fit::kTermCount; ++j) {
-    const auto& c = coefficient(r.coefficients, j);
+    const auto& c = fit::coefficient(r.coefficients, j);
     if (!c.note.empty()) out += fmt::format("# {}: {}\n", fit::term_name(j), c.note);
   }
-  out += fmt::format("# paper eqs. 1-2: tau_opt = {:.6g} s, adev_min = {:.6g}; measured minimum "
-                     "{:.6g} at tau = {:.6g} s\n",
-                     r.tau_opt_s, std::sqrt(r.avar_min_eq2) / f, std::sqrt(r.avar_min_measured) / f,
-                     r.tau_min_measured_s);
+  const std::string eq12 =
+      r.tau_opt_s > 0.0
+          ? fmt::format("tau_opt = {:.6g} s, adev_min = {:.6g} {}", r.tau_opt_s,
+                        std::sqrt(r.avar_min_eq2) / f, unit_label(record))
+          : std::string("not available (they need both N and K identified)");
+  out += fmt::format("# paper eqs. 1-2: {}; measured minimum {:.6g} {} at tau = {:.6g} s\n", eq12,
+                     std::sqrt(r.avar_min_measured) / f, unit_label(record), r.tau_min_measured_s);
   out += "# " + r.summary.BriefReport() + "\n";
   for (const auto& w : r.summary.warnings) out += "# warning: " + w + "\n";
   out += fmt::format("{:>13} {:>13} {:>13} {:>9} {:>4}\n", "tau [s]", "adev", "model", "resid/sd",
@@ -180,32 +102,8 @@ void run_fit(FitOptionsCli& options) {
   fo.level = options.level;
   fo.use_correlation = options.gls;
   fo.min_dominant_taus = options.min_dominant_taus;
-  if (options.selection == "none") {
-    fo.selection = fit::Selection::none;
-  } else if (options.selection == "aic") {
-    fo.selection = fit::Selection::aic;
-  } else if (options.selection == "bic") {
-    fo.selection = fit::Selection::bic;
-  } else {
-    throw InputError("unknown --selection '" + options.selection + "'; use none, aic or bic");
-  }
-  for (bool& t : fo.terms) t = false;
-  std::size_t start = 0;
-  while (start <= options.terms.size()) {
-    const std::size_t comma = std::min(options.terms.find(',', start), options.terms.size());
-    const std::string name = options.terms.substr(start, comma - start);
-    bool found = false;
-    for (int j = 0; j < fit::kTermCount; ++j) {
-      if (name == fit::term_name(j)) {
-        fo.terms[j] = true;
-        found = true;
-      }
-    }
-    if (!found) {
-      throw InputError("--terms: unknown term '" + name + "'; use a comma list of Q,N,B,K,R");
-    }
-    start = comma + 1;
-  }
+  fo.selection = fit::parse_selection(options.selection);
+  fit::parse_terms(options.terms, fo);
   std::string why;
   if (!fo.IsValid(&why)) throw InputError("fit options: " + why);
 
@@ -229,7 +127,7 @@ void run_fit(FitOptionsCli& options) {
                                      ? Quantity::acceleration
                                      : Quantity::angular_rate;
 
-  nlohmann::json json = to_json(record, fo, result);
+  nlohmann::json json = fit::report_json(record_info(record), fo, result);
   options.spec.force = options.output.force;
   json["spec_comparison"] = run_spec_exports(options.spec, result.coefficients, record.rate_hz);
   std::string text;

@@ -5,9 +5,9 @@ data_type="phase", taus="octave")`` returns ``(taus, devs, errs, ns)``. As in Al
 default data_type is "phase" (angle); pass data_type="freq" (or "rate") for gyro rate samples.
 Deviations are in the unit of the rate; taus in seconds.
 """
-from ._imunoise import InputError, deviation, simulate, simulate_preset
+from ._imunoise import InputError, deviation, fit, simulate, simulate_preset
 
-__all__ = ["InputError", "deviation", "simulate", "simulate_preset", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev",
+__all__ = ["InputError", "deviation", "fit", "simulate", "simulate_preset", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev",
            "totdev", "mtotdev", "ttotdev", "htotdev", "theo1", "theobr", "mtie",
            "tierms"]
 

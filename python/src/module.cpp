@@ -6,10 +6,12 @@ namespace py = pybind11;
 namespace imunoise::python {
 void register_deviation(py::module_& m);
 void register_simulate(py::module_& m);
+void register_fit(py::module_& m);
 }
 
 PYBIND11_MODULE(_imunoise, m) {
   m.doc() = "imunoise: noise analysis of inertial sensors (compiled core)";
   imunoise::python::register_deviation(m);
   imunoise::python::register_simulate(m);
+  imunoise::python::register_fit(m);
 }

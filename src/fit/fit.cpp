@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -149,16 +150,6 @@ double model_avar(const double* theta, double tau) {
   double s = 0.0;
   for (int j = 0; j < kTermCount; ++j) s += theta[j] * term_basis(j, tau);
   return s;
-}
-
-Coefficient& coefficient_of(NoiseCoefficients& c, int term) {
-  switch (term) {
-    case kQ: return c.quantization;
-    case kN: return c.random_walk;
-    case kB: return c.bias_instability;
-    case kK: return c.rate_random_walk;
-    default: return c.rate_ramp;
-  }
 }
 
 int dominant(const double* theta, double tau) {
@@ -319,7 +310,7 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
   auto& summary = result.summary;
   for (int j = 0; j < kTermCount; ++j) {
     result.terms[j].fitted = options.terms[j];
-    auto& c = coefficient_of(result.coefficients, j);
+    auto& c = coefficient(result.coefficients, j);
     c = Coefficient{};
     c.note = options.terms[j] ? "" : "not fitted";
   }
@@ -340,7 +331,7 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
   auto nothing = [&](Termination t, const std::string& msg) {
     summary.termination = t;
     summary.message = msg;
-    for (int j : fitted) coefficient_of(result.coefficients, j).note = msg;
+    for (int j : fitted) coefficient(result.coefficients, j).note = msg;
     return result;
   };
   if (curve.tau.empty()) return nothing(Termination::too_few_points, "no usable tau in the curve");
@@ -405,7 +396,7 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
       const auto ci = chi2_interval(curve.dev[best], dof, options.level);
       const double scale = 1.0 / std::sqrt(term_basis(j, curve.tau[best]));
       t.theta_sd = best_v * std::sqrt(2.0 / dof);
-      auto& c = coefficient_of(result.coefficients, j);
+      auto& c = coefficient(result.coefficients, j);
       const double slope = local_slope(curve, best);
       const bool seen = std::abs(slope - kTermSlope[j]) < 0.25;
       if (seen) {
@@ -570,7 +561,7 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
     }
     t.theta_sd = std::sqrt(std::max(0.0, var));
     if (!std::isfinite(t.theta_sd)) t.theta_sd = 0.0;
-    auto& coef = coefficient_of(result.coefficients, j);
+    auto& coef = coefficient(result.coefficients, j);
     // Interval by test inversion: h is inside when |theta_j - h| <= z sd(h), sd(h) being the
     // standard deviation of this estimator (the same weights) when the truth has theta_j = h
     // (the variance of an Allan variance grows with the model, so the interval is skewed up).
@@ -671,7 +662,7 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
 
   for (int j : dropped_terms) {
     result.terms[j].estimate = std::sqrt(dropped_theta[j]);
-    auto& coef = coefficient_of(result.coefficients, j);
+    auto& coef = coefficient(result.coefficients, j);
     if (!coef.identified) {
       coef.note = strf("dominates the fitted model at fewer than %d taus of this record: it "
                        "cannot be separated from its neighbours (record too short or tau range "
@@ -699,13 +690,27 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
   fill_common(result, curve, sd_points);
   // A term that dominates nowhere on the measured range is known only through its tail.
   for (int j : fitted) {
-    auto& coef = coefficient_of(result.coefficients, j);
+    auto& coef = coefficient(result.coefficients, j);
     if (coef.identified && result.terms[j].tau_min_s == 0.0) {
       coef.note = "significant, but it dominates at no measured tau: extrapolated from the "
                   "other terms' range";
     }
   }
   return result;
+}
+
+const Coefficient& coefficient(const NoiseCoefficients& c, int term) {
+  switch (term) {
+    case kQ: return c.quantization;
+    case kN: return c.random_walk;
+    case kB: return c.bias_instability;
+    case kK: return c.rate_random_walk;
+    default: return c.rate_ramp;
+  }
+}
+
+Coefficient& coefficient(NoiseCoefficients& c, int term) {
+  return const_cast<Coefficient&>(coefficient(std::as_const(c), term));
 }
 
 std::vector<std::string> record_warnings(std::span<const double> phase_si, double tau0_s) {

@@ -60,6 +60,10 @@ inline constexpr int kTermCount = 5;
 /// "Q", "N", "B", "K", "R".
 const char* term_name(int term);
 
+/// The coefficient of term j (kQ .. kR) in c.
+Coefficient& coefficient(NoiseCoefficients& c, int term);
+const Coefficient& coefficient(const NoiseCoefficients& c, int term);
+
 /// Basis function g_j(tau) of term j: sigma^2(tau) = sum_j theta_j g_j(tau).
 double term_basis(int term, double tau_s);
 

@@ -1,0 +1,113 @@
+// imunoise.fit: the noise-model fit of a NumPy record, returned as the same document as
+// `imunoise fit --format json` (a dict), built by the library's fit report.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+
+#include <cmath>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "imunoise/allan.hpp"
+#include "imunoise/error.hpp"
+#include "imunoise/finite.hpp"
+#include "imunoise/fit/fit.hpp"
+#include "imunoise/fit/report.hpp"
+#include "imunoise/phase.hpp"
+#include "imunoise/series.hpp"
+#include "imunoise/tau_grid.hpp"
+#include "imunoise/theo.hpp"
+#include "imunoise/units.hpp"
+
+namespace py = pybind11;
+
+namespace imunoise::python {
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+// The rate unit the report speaks in, from the user's unit of the samples.
+fit::RecordInfo describe(InputKind kind, const std::string& units, double rate_hz,
+                         std::size_t n_samples) {
+  fit::RecordInfo info;
+  info.source = "array";
+  info.rate_hz = rate_hz;
+  info.n_samples = n_samples;
+  if (units.empty()) {
+    info.unit_label = "input unit";
+    return info;
+  }
+  const Unit given = parse_unit(units);
+  info.rate_unit = kind == InputKind::angle ? derivative_unit(given) : given;
+  if (kind == InputKind::rate) integral_unit(info.rate_unit);  // throws unless a rate
+  info.unit_label = info.rate_unit.name;
+  info.gyro = info.rate_unit.quantity == Quantity::angular_rate;
+  return info;
+}
+
+py::object fit_array(const Array& data, double rate, const std::string& data_type,
+                     const std::string& units, const std::string& method,
+                     const std::string& terms, double level, const std::string& taus,
+                     const std::string& selection, bool gls, int min_dominant_taus) {
+  if (data.ndim() != 1) throw InputError("data must be a 1-D array, got " + std::to_string(data.ndim()) + "-D");
+  if (!(rate > 0) || !std::isfinite(rate)) {
+    throw InputError("rate must be positive and finite (Hz), got " + std::to_string(rate));
+  }
+  const std::span<const double> samples(data.data(), static_cast<std::size_t>(data.shape(0)));
+  fit::FitOptions options;
+  options.method = fit::parse_method(method);
+  options.level = level;
+  options.selection = fit::parse_selection(selection);
+  options.use_correlation = gls;
+  options.min_dominant_taus = min_dominant_taus;
+  fit::parse_terms(terms, options);
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError("fit options: " + why);
+  const InputKind kind = parse_input_kind(data_type);
+  const fit::RecordInfo info = describe(kind, units, rate, samples.size());
+  const TauGrid grid = parse_tau_grid(taus);
+
+  fit::FitResult result;
+  {
+    py::gil_scoped_release release;
+    if (const std::size_t i = first_non_finite(samples); i < samples.size()) {
+      throw InputError("sample " + std::to_string(i) + " is not finite; remove or repair it");
+    }
+    const double tau0_s = 1.0 / rate;
+    // An angle unit and its rate (deg, deg/s) share to_si: the seconds are SI.
+    const double to_si = info.rate_unit.to_si;
+    std::vector<double> si(samples.begin(), samples.end());
+    for (double& v : si) v *= to_si;
+    const std::vector<double> phase =
+        kind == InputKind::rate ? phase_from_rate(si, tau0_s, compensated_mean(si)) : std::move(si);
+    auto warnings = fit::record_warnings(phase, tau0_s);
+    if (fit::is_constant_record(phase, tau0_s)) {
+      throw InputError("the rate is constant (all-zero or a fixed value): there is no noise to "
+                       "identify");
+    }
+    const auto factors = estimator_averaging_factors(Estimator::oadev, grid, rate, phase.size());
+    const auto points = oadev(phase, tau0_s, factors);
+    result = fit::fit_allan(points, phase.size(), tau0_s, options);
+    result.summary.warnings.insert(result.summary.warnings.begin(), warnings.begin(),
+                                   warnings.end());
+  }
+  if (result.summary.termination == fit::Termination::degenerate_input ||
+      result.summary.termination == fit::Termination::too_few_points) {
+    throw InputError("cannot fit a noise model: " + result.summary.message);
+  }
+  const std::string text = fit::report_json(info, options, result).dump();
+  return py::module_::import("json").attr("loads")(text);
+}
+
+}  // namespace
+
+void register_fit(py::module_& m) {
+  m.def("fit", &fit_array, py::arg("data"), py::arg("rate"), py::arg("data_type") = "rate",
+        py::arg("units") = "", py::arg("method") = "wls", py::arg("terms") = "Q,N,B,K",
+        py::arg("level") = 0.95, py::arg("taus") = "octave", py::arg("selection") = "none",
+        py::arg("gls") = false, py::arg("min_dominant_taus") = 2,
+        "Noise-model coefficients (Q, N, B, K, R) of a record with 95% intervals and verdicts; "
+        "returns the dict of `imunoise fit --format json` (data_type 'rate' by default).");
+}
+
+}  // namespace imunoise::python

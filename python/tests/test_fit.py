@@ -1,0 +1,77 @@
+"""imunoise.fit: the noise-model fit of a NumPy record, as a dict (the JSON of `imunoise fit`).
+
+Truth from the simulator (tests/sim checks its statistics): the fitted intervals must contain
+the simulated coefficients, rate and angle input must agree, bad input must raise."""
+import math
+
+import numpy as np
+import pytest
+
+import imunoise
+
+N_TRUE, B_TRUE = 8.9e-4, 5.9e-4  # the paper's TG-100 gyro 1 (Table 2), deg/sqrt(s) and deg/s
+
+
+@pytest.fixture(scope="module")
+def gyro():
+    # 1 h at 200 Hz: N and B are identified; K is not (too short), which the fit must say.
+    return imunoise.simulate(rate=200.0, duration=3600.0, N=N_TRUE, B=B_TRUE, seed=11)
+
+
+def test_intervals_contain_the_simulated_truth(gyro):
+    r = imunoise.fit(gyro, 200.0, units="deg/s")
+    n, b = r["terms"]["N"], r["terms"]["B"]
+    assert n["identified"] and b["identified"]
+    assert n["ci_low"] <= N_TRUE <= n["ci_high"]
+    assert b["ci_low"] <= B_TRUE <= b["ci_high"]
+    assert n["unit"] == "deg/sqrt(s)" and b["unit"] == "deg/s"
+    # Customary units: deg/sqrt(h) is 60 x deg/sqrt(s); deg/h is 3600 x deg/s.
+    assert n["customary"]["value"] == pytest.approx(60 * n["value"], rel=1e-12)
+    assert b["customary"]["value"] == pytest.approx(3600 * b["value"], rel=1e-12)
+    # No K in the data: not identified, value 0, an upper limit; eqs. 1-2 then unavailable.
+    assert not r["terms"]["K"]["identified"] and r["terms"]["K"]["value"] == 0
+    assert r["paper"]["tau_opt_s"] is None
+    assert r["diagnostics"]["termination"] == "converged"
+
+
+def test_rate_and_angle_input_agree(gyro):
+    by_rate = imunoise.fit(gyro, 200.0, units="deg/s")
+    angle = np.concatenate([[0.0], np.cumsum(gyro - gyro.mean()) / 200.0])
+    by_angle = imunoise.fit(angle, 200.0, data_type="angle", units="deg")
+    assert by_angle["unit"] == "deg/s"
+    for term in ("N", "B"):
+        assert by_angle["terms"][term]["value"] == pytest.approx(by_rate["terms"][term]["value"],
+                                                                 rel=1e-9)
+
+
+def test_without_units_the_values_are_in_the_input_unit(gyro):
+    r = imunoise.fit(gyro * 1000.0, 200.0)  # mdeg/s, unlabelled
+    assert r["unit"] == "input unit"
+    assert "customary" not in r["terms"]["N"]
+    assert r["terms"]["N"]["value"] == pytest.approx(
+        1000.0 * imunoise.fit(gyro, 200.0)["terms"]["N"]["value"], rel=1e-9)
+
+
+def test_methods(gyro):
+    for method in ("ols", "slope"):
+        r = imunoise.fit(gyro, 200.0, units="deg/s", method=method)
+        assert r["method"] == method
+        assert r["terms"]["N"]["value"] == pytest.approx(N_TRUE, rel=0.05)
+
+
+def test_bad_input():
+    good = imunoise.simulate(rate=100.0, duration=100.0, N=1e-3, seed=2)
+    bad = good.copy()
+    bad[17] = math.nan
+    with pytest.raises(ValueError, match="sample 17"):
+        imunoise.fit(bad, 100.0)
+    with pytest.raises(ValueError, match="constant"):
+        imunoise.fit(np.full(5000, 0.3), 100.0)
+    with pytest.raises(ValueError, match="unknown term"):
+        imunoise.fit(good, 100.0, terms="N,X")
+    with pytest.raises(ValueError):
+        imunoise.fit(good, 100.0, units="furlong/s")
+    with pytest.raises(ValueError, match="rate must be positive"):
+        imunoise.fit(good, 0.0)
+    with pytest.raises(ValueError, match="selection"):
+        imunoise.fit(good, 100.0, selection="best")

@@ -1,0 +1,122 @@
+#include "imunoise/fit/report.hpp"
+
+#include <cmath>
+
+#include "imunoise/error.hpp"
+
+namespace imunoise::fit {
+namespace {
+
+nlohmann::json number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+// Eqs. 1-2 exist only with both N and K: 0 from the fit means "not available".
+nlohmann::json positive(double v) { return v > 0.0 ? number(v) : nlohmann::json(nullptr); }
+
+}  // namespace
+
+void parse_terms(std::string_view list, FitOptions& options) {
+  for (bool& t : options.terms) t = false;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const std::string_view name = list.substr(start, comma - start);
+    bool found = false;
+    for (int j = 0; j < kTermCount; ++j) {
+      if (name == term_name(j)) {
+        options.terms[j] = true;
+        found = true;
+      }
+    }
+    if (!found) {
+      throw InputError("--terms: unknown term '" + std::string(name) +
+                       "'; use a comma list of Q,N,B,K,R");
+    }
+    start = comma + 1;
+  }
+}
+
+Selection parse_selection(std::string_view name) {
+  if (name == "none") return Selection::none;
+  if (name == "aic") return Selection::aic;
+  if (name == "bic") return Selection::bic;
+  throw InputError("unknown --selection '" + std::string(name) + "'; use none, aic or bic");
+}
+
+std::vector<std::string> coefficient_units(const std::string& rate) {
+  const bool per_s = rate.size() > 2 && rate.compare(rate.size() - 2, 2, "/s") == 0;
+  if (per_s) {
+    const std::string base = rate.substr(0, rate.size() - 2);
+    return {base, base + "/sqrt(s)", rate, rate + "/sqrt(s)", base + "/s^2"};
+  }
+  return {rate + "*s", rate + "*sqrt(s)", rate, rate + "/sqrt(s)", rate + "/s"};
+}
+
+const CustomaryUnit& customary_unit(int term) {
+  static const CustomaryUnit* units[kTermCount] = {&customary_gyro_Q, &customary_gyro_N,
+                                                   &customary_gyro_B, &customary_gyro_K,
+                                                   &customary_gyro_R};
+  return *units[term];
+}
+
+nlohmann::json report_json(const RecordInfo& record, const FitOptions& options,
+                           const FitResult& r) {
+  const double f = record.rate_unit.to_si;
+  const auto names = coefficient_units(record.unit_label);
+  nlohmann::json terms = nlohmann::json::object();
+  for (int j = 0; j < kTermCount; ++j) {
+    const auto& c = coefficient(r.coefficients, j);
+    nlohmann::json t{{"value", number(c.value / f)}, {"unit", names[static_cast<std::size_t>(j)]},
+                     {"ci_low", number(c.ci_low / f)}, {"ci_high", number(c.ci_high / f)},
+                     {"identified", c.identified}, {"fitted", r.terms[j].fitted},
+                     {"estimate", number(r.terms[j].estimate / f)}};
+    if (!c.note.empty()) t["note"] = c.note;
+    if (r.terms[j].tau_max_s > 0) {
+      t["dominates_tau_s"] = {r.terms[j].tau_min_s, r.terms[j].tau_max_s};
+    }
+    if (record.gyro) {
+      const auto& cu = customary_unit(j);
+      t["customary"] = {{"value", number(c.value / cu.to_si)}, {"unit", cu.name},
+                        {"ci_low", number(c.ci_low / cu.to_si)},
+                        {"ci_high", number(c.ci_high / cu.to_si)}};
+    }
+    terms[term_name(j)] = std::move(t);
+  }
+  const auto& s = r.summary;
+  nlohmann::json residuals = nlohmann::json::array();
+  for (const auto& p : r.residuals) {
+    residuals.push_back({{"tau_s", p.tau_s}, {"adev", number(std::sqrt(p.avar) / f)},
+                         {"adev_model", number(std::sqrt(p.avar_model) / f)},
+                         {"normalized_residual", number(p.normalized)},
+                         {"dominant_term", p.dominant_term >= 0
+                                               ? nlohmann::json(term_name(p.dominant_term))
+                                               : nlohmann::json(nullptr)}});
+  }
+  return {
+      {"unit", record.unit_label},
+      {"method", method_name(options.method)},
+      {"level", options.level},
+      {"source", record.source},
+      {"rate_hz", record.rate_hz},
+      {"n_samples", record.n_samples},
+      {"terms", std::move(terms)},
+      {"paper", {{"tau_opt_s", positive(r.tau_opt_s)},
+                 {"adev_min_eq2", positive(std::sqrt(r.avar_min_eq2) / f)},
+                 {"adev_min_measured", number(std::sqrt(r.avar_min_measured) / f)},
+                 {"tau_min_measured_s", number(r.tau_min_measured_s)},
+                 {"note", "eqs. 1-2 use the fitted N and K only (white noise + rate random walk; "
+                          "null when either is not identified); the measured minimum includes "
+                          "every term"}}},
+      {"diagnostics", {{"termination", termination_name(s.termination)},
+                       {"message", s.message},
+                       {"iterations", s.iterations},
+                       {"taus_used", s.points_used},
+                       {"chi2", number(s.chi2)},
+                       {"dof", s.dof},
+                       {"chi2_dof", number(s.chi2_dof)},
+                       {"warnings", s.warnings},
+                       {"residuals", std::move(residuals)}}}};
+}
+
+}  // namespace imunoise::fit
