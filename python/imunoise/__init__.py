@@ -4,6 +4,10 @@ AllanTools-compatible estimator functions: ``imunoise.oadev(data, rate=1.0,
 data_type="phase", taus="octave")`` returns ``(taus, devs, errs, ns)``. As in AllanTools the
 default data_type is "phase" (angle); pass data_type="freq" (or "rate") for gyro rate samples.
 Deviations are in the unit of the rate; taus in seconds.
+
+``imunoise.fit(rate_samples, rate_hz, units="deg/s")`` returns the noise-model fit (Q, N, B, K,
+R with 95 % intervals and verdicts) as a dict, the document of ``imunoise fit --format json``;
+``imunoise.simulate(...)`` makes records with known noise.
 """
 from ._imunoise import InputError, deviation, fit, simulate, simulate_preset
 
