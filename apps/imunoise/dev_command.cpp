@@ -102,15 +102,21 @@ std::string format_json(const PhaseRecord& record, const std::vector<Curve>& cur
   return (array.size() == 1 ? array[0] : array).dump(1) + "\n";
 }
 
-std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.6e}", v) : "nan"; }
+std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.6e}", v) : "-"; }
+
+// CSV: an absent number (no EDF or bounds for this estimator, or --no-ci) is an empty field.
+std::string csv_number(double v, int digits) {
+  return std::isfinite(v) ? fmt::format("{:.{}g}", v, digits) : std::string();
+}
 
 std::string format_csv(const std::vector<Curve>& curves) {
   std::string out = "estimator,m,tau_s,dev,unit,n,edf,ci_low,ci_high,alpha\n";
   for (const auto& curve : curves) {
     for (const auto& p : curve.points) {
-      out += fmt::format("{},{},{:.9g},{:.10g},{},{},{:.6g},{:.10g},{:.10g},{}\n",
-                         curve.label, p.m, p.tau_s, p.dev, curve.unit, p.n,
-                         p.edf, p.ci_low, p.ci_high,
+      out += fmt::format("{},{},{:.9g},{},{},{},{},{},{},{}\n",
+                         curve.label, p.m, p.tau_s, csv_number(p.dev, 10), curve.unit, p.n,
+                         csv_number(p.edf, 6), csv_number(p.ci_low, 10),
+                         csv_number(p.ci_high, 10),
                          p.alpha == std::numeric_limits<int>::min() ? std::string()
                                                                      : std::to_string(p.alpha));
     }
@@ -130,15 +136,20 @@ std::string format_table(const PhaseRecord& record, const std::vector<Curve>& cu
                        t.gaps.size(), t.missing_samples);
   }
   for (const auto& curve : curves) {
-    out += fmt::format("\n{} [{}], {:.1f}% confidence{}\n", curve.label, curve.unit, 100 * level,
+    const std::string bounds = curve.confidence.empty()
+                                   ? std::string("no confidence bounds (--no-ci)")
+                                   : fmt::format("{:.1f}% confidence", 100 * level);
+    out += fmt::format("\n{} [{}], {}{}\n", curve.label, curve.unit, bounds,
                        curve.label != estimator_name(curve.estimator)
                            ? " (bias-corrected for the noise type alpha)"
                            : "");
     out += fmt::format("{:>10} {:>13} {:>13} {:>11} {:>11} {:>13} {:>13} {:>5}\n", "m", "tau [s]",
                        "dev", "n", "edf", "ci_low", "ci_high", "alpha");
     for (const auto& p : curve.points) {
-      out += fmt::format("{:>10} {:>13.6g} {:>13} {:>11} {:>11.4g} {:>13} {:>13} {:>5}\n", p.m,
-                         p.tau_s, cell(p.dev), p.n, p.edf, cell(p.ci_low), cell(p.ci_high),
+      out += fmt::format("{:>10} {:>13.6g} {:>13} {:>11} {:>11} {:>13} {:>13} {:>5}\n", p.m,
+                         p.tau_s, cell(p.dev), p.n,
+                         std::isfinite(p.edf) ? fmt::format("{:.4g}", p.edf) : std::string("-"),
+                         cell(p.ci_low), cell(p.ci_high),
                          p.alpha == std::numeric_limits<int>::min() ? std::string("-")
                                                                      : std::to_string(p.alpha));
     }

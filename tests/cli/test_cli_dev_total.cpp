@@ -120,6 +120,26 @@ TEST(CliDevTotal, TheoBrOverBudgetIsSkippedWholeWithANote) {
   EXPECT_NE(r.err.find("theobr skipped"), std::string::npos) << r.err;
 }
 
+// Absent numbers (no EDF for mtie, no bounds with --no-ci) are "-" in the table and empty in
+// CSV, never "nan"; the table says when there are no bounds.
+TEST(CliDevTotal, AbsentNumbersAreNeverNan) {
+  test::TempDir dir;
+  const auto file = dir.write("nbs14.txt", nbs14_text());
+  for (const char* format : {"table", "csv"}) {
+    for (const bool no_ci : {false, true}) {
+      std::vector<std::string> args{"dev", file, "--rate", "1", "--estimator", "oadev,mtie",
+                                    "--af", "1,10", "--format", format};
+      if (no_ci) args.push_back("--no-ci");
+      const auto r = test::run_cli(args);
+      ASSERT_EQ(r.exit_code, 0) << r.err;
+      EXPECT_EQ(r.out.find("nan"), std::string::npos) << format << " no_ci=" << no_ci << "\n" << r.out;
+      if (no_ci && std::string(format) == "table") {
+        EXPECT_NE(r.out.find("no confidence bounds (--no-ci)"), std::string::npos) << r.out;
+      }
+    }
+  }
+}
+
 TEST(CliDevTotal, TimeBudgetSkipsTheLongestTausWithANote) {
   test::TempDir dir;
   const auto file = dir.write("nbs14.txt", nbs14_text());
