@@ -74,12 +74,14 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
       throw InputError("sample " + std::to_string(i) + " is not finite; remove or repair it");
     }
     const double tau0_s = 1.0 / rate;
-    // An angle unit and its rate (deg, deg/s) share to_si: the seconds are SI.
-    const double to_si = info.rate_unit.to_si;
-    std::vector<double> si(samples.begin(), samples.end());
-    for (double& v : si) v *= to_si;
-    const std::vector<double> phase =
-        kind == InputKind::rate ? phase_from_rate(si, tau0_s, compensated_mean(si)) : std::move(si);
+    // One array: the phase (integrated when the samples are a rate), then scaled to SI — an
+    // angle unit and its rate (deg, deg/s) share to_si, the seconds being SI.
+    std::vector<double> phase =
+        kind == InputKind::rate ? phase_from_rate(samples, tau0_s, compensated_mean(samples))
+                                : std::vector<double>(samples.begin(), samples.end());
+    if (const double to_si = info.rate_unit.to_si; to_si != 1.0) {
+      for (double& v : phase) v *= to_si;
+    }
     auto warnings = fit::record_warnings(phase, tau0_s);
     if (fit::is_constant_record(phase, tau0_s)) {
       throw InputError("the rate is constant (all-zero or a fixed value): there is no noise to "
