@@ -7,6 +7,7 @@
 
 #include "imunoise/error.hpp"
 #include "imunoise/spec/exports.hpp"
+#include "imunoise/spec/report.hpp"
 #include "output.hpp"
 
 namespace imunoise::cli {
@@ -30,31 +31,7 @@ void add_spec_export_options(CLI::App& app, SpecExportOptions& options) {
       ->capture_default_str();
 }
 
-Spec resolve_spec(const std::string& name_or_path) {
-  for (const auto& name : builtin_spec_names()) {
-    if (name == name_or_path) return builtin_spec(name);
-  }
-  std::error_code ec;
-  if (std::filesystem::exists(name_or_path, ec)) return load_spec_file(name_or_path);
-  std::string names;
-  for (const auto& name : builtin_spec_names()) names += (names.empty() ? "" : ", ") + name;
-  throw InputError("--spec '" + name_or_path + "': neither a built-in spec (" + names +
-                   ") nor an existing file; fix: pass a built-in name or the path of a YAML spec "
-                   "file (format: docs/spec.md, example: examples/specs/tg100.yaml)");
-}
-
 namespace {
-
-nlohmann::json number(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
-
-nlohmann::json value_json(const ValueInUnit& v) {
-  return {{"value", number(v.value)},
-          {"ci_low", number(v.ci_low)},
-          {"ci_high", number(v.ci_high)},
-          {"unit", v.unit}};
-}
 
 void check_target(const std::string& option, const std::string& path, bool force) {
   if (path == "-") {
@@ -72,47 +49,6 @@ void check_target(const std::string& option, const std::string& path, bool force
 
 }  // namespace
 
-nlohmann::json spec_comparison_json(const SpecComparison& comparison) {
-  nlohmann::json j;
-  j["spec"] = comparison.spec_name;
-  j["source"] = comparison.spec_source;
-  j["sensor"] = std::string(sensor_kind_name(comparison.sensor));
-  j["confidence_level"] = comparison.confidence_level;
-  j["rule"] =
-      "pass if measured <= spec * (1 + tolerance); deviation_percent = "
-      "100 * (measured / spec - 1); conclusive if the whole confidence interval lies "
-      "on the verdict's side of the limit";
-  j["all_pass"] = comparison.all_pass;
-  auto terms = nlohmann::json::array();
-  for (const auto& r : comparison.rows) {
-    nlohmann::json t;
-    t["term"] = r.term;
-    t["symbol"] = std::string(1, r.symbol);
-    t["title"] = r.title;
-    t["identified"] = r.identified;
-    t["measured"] = value_json(r.measured_si);
-    t["measured_customary"] = value_json(r.measured_customary);
-    if (r.verdict != Verdict::not_in_spec) {
-      t["measured_in_spec_unit"] = value_json(r.measured_spec_unit);
-      t["spec"] = {{"value", number(r.spec_value)},
-                   {"unit", r.spec_unit},
-                   {"psd", r.psd},
-                   {"tolerance", r.tolerance},
-                   {"limit", number(r.spec_value * (1.0 + r.tolerance))}};
-      t["spec_si"] = {{"value", number(r.spec_si)},
-                      {"limit", number(r.limit_si)},
-                      {"unit", r.measured_si.unit}};
-    }
-    t["deviation_percent"] = number(r.deviation_percent);
-    t["verdict"] = std::string(verdict_name(r.verdict));
-    t["ci_vs_limit"] = std::string(ci_position_name(r.ci_position));
-    t["conclusive"] = r.conclusive;
-    if (!r.note.empty()) t["note"] = r.note;
-    terms.push_back(std::move(t));
-  }
-  j["terms"] = std::move(terms);
-  return j;
-}
 
 std::string format_spec_table(const nlohmann::json& c) {
   if (c.is_null()) return "";
@@ -153,7 +89,7 @@ std::string format_spec_table(const nlohmann::json& c) {
 }
 
 std::string format_spec_table(const SpecComparison& comparison) {
-  return format_spec_table(spec_comparison_json(comparison));
+  return format_spec_table(comparison_json(comparison));
 }
 
 nlohmann::json run_spec_exports(const SpecExportOptions& options,
@@ -176,7 +112,7 @@ nlohmann::json run_spec_exports(const SpecExportOptions& options,
                      "'; fix: give two different file names");
   }
   nlohmann::json comparison = nullptr;
-  if (spec) comparison = spec_comparison_json(compare(coefficients, *spec));
+  if (spec) comparison = comparison_json(compare(coefficients, *spec));
   std::string kalibr_text;
   std::string kf_text;
   if (!options.kalibr_path.empty()) {

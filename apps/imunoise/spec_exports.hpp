@@ -31,9 +31,6 @@ struct SpecExportOptions {
 /// Registers --spec, --kalibr, --kf-json, --inflation and --kalibr-topic on `app`.
 void add_spec_export_options(CLI::App& app, SpecExportOptions& options);
 
-/// A built-in spec name or a spec file path. Throws InputError when it is neither.
-Spec resolve_spec(const std::string& name_or_path);
-
 /// Writes the requested export files (never replacing an existing file unless options.force;
 /// all targets are checked before any is written) and returns the datasheet comparison as
 /// JSON (null when no --spec was given). Throws InputError for a bad spec, a spec of another
@@ -42,11 +39,8 @@ Spec resolve_spec(const std::string& name_or_path);
 nlohmann::json run_spec_exports(const SpecExportOptions& options,
                                 const NoiseCoefficients& coefficients, double rate_hz);
 
-/// The comparison as JSON (the object run_spec_exports returns).
-nlohmann::json spec_comparison_json(const SpecComparison& comparison);
-
 /// A plain-text table of the comparison: term, measured, spec, deviation, CI vs limit,
-/// verdict. Takes the JSON of spec_comparison_json / run_spec_exports; "" for null.
+/// verdict. Takes the JSON of comparison_json (imunoise/spec/report.hpp) / run_spec_exports; "" for null.
 std::string format_spec_table(const nlohmann::json& comparison);
 std::string format_spec_table(const SpecComparison& comparison);
 

@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 
 #include <cmath>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -15,6 +16,9 @@
 #include "imunoise/fit/report.hpp"
 #include "imunoise/phase.hpp"
 #include "imunoise/series.hpp"
+#include "imunoise/spec/comparison.hpp"
+#include "imunoise/spec/report.hpp"
+#include "imunoise/spec/spec.hpp"
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
 #include "imunoise/units.hpp"
@@ -48,7 +52,8 @@ fit::RecordInfo describe(InputKind kind, const std::string& units, double rate_h
 py::object fit_array(const Array& data, double rate, const std::string& data_type,
                      const std::string& units, const std::string& method,
                      const std::string& terms, double level, const std::string& taus,
-                     const std::string& selection, bool gls, int min_dominant_taus) {
+                     const std::string& selection, bool gls, int min_dominant_taus,
+                     const std::string& spec_name) {
   if (data.ndim() != 1) throw InputError("data must be a 1-D array, got " + std::to_string(data.ndim()) + "-D");
   if (!(rate > 0) || !std::isfinite(rate)) {
     throw InputError("rate must be positive and finite (Hz), got " + std::to_string(rate));
@@ -66,6 +71,12 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
   const InputKind kind = parse_input_kind(data_type);
   const fit::RecordInfo info = describe(kind, units, rate, samples.size());
   const TauGrid grid = parse_tau_grid(taus);
+  if (!spec_name.empty() && units.empty()) {
+    throw InputError("spec comparison needs the unit of the data: pass units='deg/s' (or the "
+                     "sensor's unit)");
+  }
+  const std::optional<Spec> spec =
+      spec_name.empty() ? std::nullopt : std::optional<Spec>(resolve_spec(spec_name));
 
   fit::FitResult result;
   {
@@ -97,7 +108,13 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
       result.summary.termination == fit::Termination::too_few_points) {
     throw InputError("cannot fit a noise model: " + result.summary.message);
   }
-  const std::string text = fit::report_json(info, options, result).dump();
+  result.coefficients.quantity = info.rate_unit.quantity == Quantity::acceleration
+                                     ? Quantity::acceleration
+                                     : Quantity::angular_rate;
+  nlohmann::json report = fit::report_json(info, options, result);
+  report["spec_comparison"] =
+      spec ? comparison_json(compare(result.coefficients, *spec)) : nlohmann::json(nullptr);
+  const std::string text = report.dump();
   return py::module_::import("json").attr("loads")(text);
 }
 
@@ -107,9 +124,10 @@ void register_fit(py::module_& m) {
   m.def("fit", &fit_array, py::arg("data"), py::arg("rate"), py::arg("data_type") = "rate",
         py::arg("units") = "", py::arg("method") = "wls", py::arg("terms") = "Q,N,B,K",
         py::arg("level") = 0.95, py::arg("taus") = "octave", py::arg("selection") = "none",
-        py::arg("gls") = false, py::arg("min_dominant_taus") = 2,
+        py::arg("gls") = false, py::arg("min_dominant_taus") = 2, py::arg("spec") = "",
         "Noise-model coefficients (Q, N, B, K, R) of a record with 95% intervals and verdicts; "
-        "returns the dict of `imunoise fit --format json` (data_type 'rate' by default).");
+        "returns the dict of `imunoise fit --format json` (data_type 'rate' by default; "
+        "spec='tg100' or a YAML spec file adds the datasheet comparison).");
 }
 
 }  // namespace imunoise::python

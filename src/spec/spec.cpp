@@ -521,4 +521,17 @@ Spec builtin_spec(std::string_view name) {
                    " or the path of a YAML spec file (docs/spec.md)");
 }
 
+Spec resolve_spec(const std::string& name_or_path) {
+  for (const auto& name : builtin_spec_names()) {
+    if (name == name_or_path) return builtin_spec(name);
+  }
+  std::error_code ec;
+  if (std::filesystem::exists(name_or_path, ec)) return load_spec_file(name_or_path);
+  std::string names;
+  for (const auto& name : builtin_spec_names()) names += (names.empty() ? "" : ", ") + name;
+  throw InputError("--spec '" + name_or_path + "': neither a built-in spec (" + names +
+                   ") nor an existing file; fix: pass a built-in name or the path of a YAML spec "
+                   "file (format: docs/spec.md, example: examples/specs/tg100.yaml)");
+}
+
 }  // namespace imunoise

@@ -94,6 +94,10 @@ Spec builtin_spec(std::string_view name);
 /// Names of the built-in specs, sorted.
 std::vector<std::string> builtin_spec_names();
 
+/// A built-in spec name or the path of a spec file. Throws InputError when it is neither,
+/// listing the built-in names.
+Spec resolve_spec(const std::string& name_or_path);
+
 /// SI conversion factor of a noise-model unit for term N, B or K of a sensor, as accepted in
 /// spec files (docs/spec.md lists them): value_si = value * factor. For a noise density in
 /// .../sqrt(Hz) the factor includes the PSD convention (one_sided divides by sqrt(2)); pass
