@@ -4,7 +4,9 @@
 
 #include <cmath>
 #include <cstdint>
+#include <exception>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 
 #include <fmt/core.h>
@@ -190,6 +192,22 @@ void load_text(const InputOptions& options, PhaseRecord& record, double to_si) {
   integrate_into(record, columns.values);
 }
 
+// The sample rate stated by the header of a text file written by `imunoise simulate`
+// ("# imunoise simulate ..." then "# rate_hz R ..."); 0 when the file is not one.
+double simulated_file_rate_hz(const std::string& path) {
+  std::ifstream in(path);
+  std::string first;
+  std::string second;
+  if (!std::getline(in, first) || first.rfind("# imunoise simulate", 0) != 0) return 0.0;
+  if (!std::getline(in, second) || second.rfind("# rate_hz ", 0) != 0) return 0.0;
+  try {
+    const double rate_hz = std::stod(second.substr(10));
+    return std::isfinite(rate_hz) && rate_hz > 0.0 ? rate_hz : 0.0;
+  } catch (const std::exception&) {
+    return 0.0;
+  }
+}
+
 }  // namespace
 
 void add_input_options(CLI::App& command, InputOptions& options) {
@@ -229,6 +247,13 @@ PhaseRecord load_phase(const InputOptions& options) {
   if (is_binary(options)) {
     load_binary(options, record, to_si);
   } else {
+    if (!(record.rate_hz > 0.0) && options.time_column.empty() && options.file != "-") {
+      record.rate_hz = simulated_file_rate_hz(options.file);
+      if (record.rate_hz > 0.0) {
+        fmt::print(stderr, "imunoise: {}: rate {:g} Hz from the file's imunoise simulate header "
+                           "(--rate overrides)\n", record.source, record.rate_hz);
+      }
+    }
     load_text(options, record, to_si);
   }
   if (record.n_samples == 0) throw InputError(record.source + ": no samples");

@@ -304,3 +304,34 @@ TEST(CliDevConfidence, LevelAndForcedNoiseType) {
 
 }  // namespace
 }  // namespace imunoise
+
+namespace imunoise::test {
+namespace {
+
+// A text file written by `imunoise simulate` states its rate in its header: `dev` uses it when
+// neither --rate nor --time-column is given, says so on stderr, and --rate still overrides.
+TEST(CliDevSimulatedFile, RateComesFromTheSimulateHeader) {
+  TempDir dir;
+  const auto file = dir.file("sim.txt");
+  const auto sim = run_cli({"simulate", "--rate", "50", "--duration", "20", "--N", "0.01",
+                            "--seed", "3", "-o", file});
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const auto r = run_cli({"dev", file, "--af", "1", "--no-ci", "--format", "json"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("rate 50 Hz from the file's imunoise simulate header"), std::string::npos)
+      << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["rate_hz"].get<double>(), 50.0);
+  EXPECT_EQ(j["points"][0]["tau_s"].get<double>(), 0.02);
+  const auto forced = run_cli({"dev", file, "--rate", "100", "--af", "1", "--no-ci", "--format",
+                               "json"});
+  ASSERT_EQ(forced.exit_code, 0) << forced.err;
+  EXPECT_EQ(nlohmann::json::parse(forced.out)["rate_hz"].get<double>(), 100.0);
+  EXPECT_EQ(forced.err.find("header"), std::string::npos) << forced.err;
+  // Any other text file still needs the rate.
+  const auto plain = dir.write("plain.txt", "1\n2\n3\n4\n5\n");
+  EXPECT_EQ(run_cli({"dev", plain}).exit_code, 1);
+}
+
+}  // namespace
+}  // namespace imunoise::test
