@@ -70,9 +70,37 @@ std::string to_table(const PhaseRecord& record, const fit::FitOptions& options,
                        names[static_cast<std::size_t>(j)],
                        c.identified ? "yes" : "no", cust);
   }
+  auto extra_row = [&](const char* name, const Coefficient& c, double to_unit,
+                       const std::string& unit) {
+    std::string cust;
+    if (gyro(record) && unit == unit_label(record)) {
+      const auto& cu = customary_gyro_B;
+      cust = fmt::format("{} [{}, {}] {}", cell(c.value / cu.to_si), cell(c.ci_low / cu.to_si),
+                         cell(c.ci_high / cu.to_si), cu.name);
+    }
+    out += fmt::format("{:<4} {:>13} {:>13} {:>13} {:<18} {:>5}  {}\n", name,
+                       cell(c.value / to_unit), cell(c.ci_low / to_unit),
+                       cell(c.ci_high / to_unit), unit, c.identified ? "yes" : "no", cust);
+  };
+  if (const auto& gm = r.coefficients.gauss_markov) {
+    extra_row("GMs", gm->sigma, f, unit_label(record));
+    extra_row("GMt", gm->correlation_time_s, 1.0, "s");
+  }
+  if (const auto& sin = r.coefficients.sinusoid) {
+    extra_row("SINa", sin->amplitude, f, unit_label(record));
+    extra_row("SINf", sin->frequency_hz, 1.0, "Hz");
+  }
   for (int j = 0; j < fit::kTermCount; ++j) {
     const auto& c = fit::coefficient(r.coefficients, j);
     if (!c.note.empty()) out += fmt::format("# {}: {}\n", fit::term_name(j), c.note);
+  }
+  if (r.extras.gauss_markov.requested) {
+    out += fmt::format("# GM (Gauss-Markov sigma GMs, correlation time GMt): {}\n",
+                       r.extras.gauss_markov.verdict);
+  }
+  if (r.extras.sinusoid.requested) {
+    out += fmt::format("# SIN (sinusoid amplitude SINa, frequency SINf): {}\n",
+                       r.extras.sinusoid.verdict);
   }
   const std::string eq12 =
       r.tau_opt_s > 0.0
@@ -153,7 +181,9 @@ void setup_fit(CLI::App& app) {
                       "(IEEE 952 read-off)")
       ->capture_default_str();
   command->add_option("--terms", options->terms,
-                      "terms to fit, comma list of Q,N,B,K,R (R only on request)")
+                      "terms to fit, comma list of Q,N,B,K,R (R only on request) and the optional "
+                      "GM (first-order Gauss-Markov) and SIN (sinusoid), each kept only when the "
+                      "data support it (wls)")
       ->capture_default_str();
   command->add_option("--taus", options->taus, "tau grid of the Allan curve: octave, decade, "
                                                "perdecade:K, ... (as dev)")

@@ -125,7 +125,8 @@ void register_fit(py::module_& m) {
         py::arg("units") = "", py::arg("method") = "wls", py::arg("terms") = "Q,N,B,K",
         py::arg("level") = 0.95, py::arg("taus") = "octave", py::arg("selection") = "none",
         py::arg("gls") = false, py::arg("min_dominant_taus") = 2, py::arg("spec") = "",
-        "Noise-model coefficients (Q, N, B, K, R) of a record with 95% intervals and verdicts; "
+        "Noise-model coefficients (Q, N, B, K, R; terms may add GM and SIN, the optional "
+        "Gauss-Markov and sinusoid terms) of a record with 95% intervals and verdicts; "
         "returns the dict of `imunoise fit --format json` (data_type 'rate' by default; "
         "spec='tg100' or a YAML spec file adds the datasheet comparison).");
 }

@@ -11,8 +11,11 @@
 //   rate random walk K^2:   C(t) =  K^2 |t|^3 / 12    (integrated Brownian phase)
 //   flicker rate noise B^2: C(t) =  B^2 t^2 ln|t| / (2 pi)
 //   white angle noise Q^2:  C(0) =  Q^2, else 0.
-// f is linear in theta, so the covariance is a quadratic form in theta: the 10 products of the
-// four unit kernels are summed once (CovarianceBasis) and any model's covariance is then a
+//   Gauss-Markov rate sigma^2, correlation time T (optional, one T per basis):
+//                           C(t) = -sigma^2 (T^2 e^{-|t|/T} + T |t|)   (C'' = -sigma^2 e^{-|t|/T};
+//                           evaluated without the annihilated 1 + (t/T)^2/2 when T >= tau0)
+// f is linear in theta, so the covariance is a quadratic form in theta: the 15 products of the
+// five unit kernels are summed once (CovarianceBasis) and any model's covariance is then a
 // cheap combination of them.
 // Each C reproduces its term's Allan variance (checked in tests/fit/test_covariance.cpp against
 // the closed forms and the Greenhall-Riley EDF). The number of (k, l) pairs at lag delta is
@@ -21,7 +24,10 @@
 // and K), so w f^2 is summed exactly on short pieces and, on long ones, integrated by 8-point
 // Gauss-Legendre with the Euler-Maclaurin end correction (sum_{a}^{b-1} g = int_a^b g +
 // (g(a) - g(b))/2 + O(g'/12)). The flicker kernel has no finite support: its tails are summed
-// the same way over geometrically growing pieces until they stop contributing.
+// the same way over geometrically growing pieces until they stop contributing. The Gauss-Markov
+// kernel's exponential part lives within a few T of each breakpoint: with it, long pieces are cut
+// into sub-pieces growing geometrically from both ends (first length max(64, T/tau0) samples), so
+// every Gauss-Legendre piece sees a smooth, slowly varying integrand.
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -45,16 +51,34 @@ constexpr std::array<double, 8> kGlWeights = {0.1012285362903763, 0.222381034453
                                               0.2223810344533745, 0.1012285362903763};
 constexpr std::int64_t kDirectPiece = 64;
 
-// The four random terms (Q, N, B, K) and their 10 products (a <= b), in the order
-// (0,0) (0,1) (0,2) (0,3) (1,1) (1,2) (1,3) (2,2) (2,3) (3,3).
-constexpr int kRandom = 4;
-constexpr int kProducts = 10;
+// The five random terms (Q, N, B, K, Gauss-Markov) and their 15 products (a <= b), in the order
+// (0,0) (0,1) .. (0,4) (1,1) .. (1,4) (2,2) .. (4,4).
+constexpr int kRandom = 5;
+constexpr int kProducts = 15;
 using Products = std::array<double, kProducts>;
+
+/// e^-x + x, less 1 + x^2/2 when T_c >= tau0 (that polynomial is annihilated by the second
+/// differences, and removing it keeps the x^3/6 that matters for T_c >> lags from cancelling).
+double gm_shape_subtracted(double x) {
+  if (x >= 2.0) return std::exp(-x) - 1.0 + x - 0.5 * x * x;
+  // -x^3/3! + x^4/4! - ...: alternating series, 25 terms reach double precision at x = 2.
+  double term = -x * x * x / 6.0, sum = term;
+  for (int n = 4; n < 30; ++n) {
+    term *= -x / n;
+    sum += term;
+  }
+  return sum;
+}
 
 struct PairKernel {
   double mi, mj;  // averaging factors
   double ni, nj;  // term counts
   double tau0;
+  double gm_time_s = 0.0;  // 0: no Gauss-Markov kernel
+
+  double gm_shape(double x) const {
+    return gm_time_s >= tau0 ? gm_shape_subtracted(x) : std::exp(-x) + x;
+  }
 
   // Unit-intensity kernels f_t(delta) of the four terms (theta_t = 1).
   std::array<double, kRandom> f(double delta, bool discrete) const {
@@ -69,6 +93,7 @@ struct PairKernel {
         out[1] += weight * (-0.5 * t);
         if (t > 0.0) out[2] += weight * (t * t * std::log(t) / (2.0 * std::numbers::pi));
         out[3] += weight * (t * t * t / 12.0);
+        if (gm_time_s > 0.0) out[4] -= weight * gm_time_s * gm_time_s * gm_shape(t / gm_time_s);
       }
     }
     return out;
@@ -87,6 +112,26 @@ struct PairKernel {
   }
   // sum_{delta = a}^{b - 1} w f_a f_b, a < b integers.
   Products piece(std::int64_t a, std::int64_t b) const {
+    if (gm_time_s > 0.0 && b - a > kDirectPiece) {
+      // Sub-pieces doubling away from both ends (see the header).
+      const auto first = std::max<std::int64_t>(
+          kDirectPiece, static_cast<std::int64_t>(std::ceil(gm_time_s / tau0)));
+      std::vector<std::int64_t> cuts{a, b};
+      const std::int64_t mid = a + (b - a) / 2;
+      for (std::int64_t len = first, x = a + first; x < mid; len *= 2, x += len) cuts.push_back(x);
+      for (std::int64_t len = first, x = b - first; x > mid; len *= 2, x -= len) cuts.push_back(x);
+      std::sort(cuts.begin(), cuts.end());
+      cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+      Products acc{};
+      for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+        const Products part = smooth_piece(cuts[c], cuts[c + 1]);
+        for (std::size_t i = 0; i < acc.size(); ++i) acc[i] += part[i];
+      }
+      return acc;
+    }
+    return smooth_piece(a, b);
+  }
+  Products smooth_piece(std::int64_t a, std::int64_t b) const {
     Products acc{};
     if (b - a <= kDirectPiece) {
       for (std::int64_t d = a; d < b; ++d) add_g(static_cast<double>(d), true, 1.0, acc);
@@ -128,7 +173,7 @@ Products pair_sum(const PairKernel& kernel) {
   kernel.add_g(static_cast<double>(bps.back()), true, 1.0, total);
   // Tails of the flicker kernel (the others vanish outside the breakpoints), outward over
   // pieces that double in length, until a piece adds less than 1e-9 of the B-B sum.
-  constexpr std::size_t kBB = 7;
+  constexpr std::size_t kBB = 9;  // (2,2)
   const std::int64_t span = std::max<std::int64_t>(bps.back() - bps.front(), 8);
   std::int64_t start = bps.back() + 1;
   for (std::int64_t len = span; start < hi; len *= 2) {
@@ -152,8 +197,9 @@ Products pair_sum(const PairKernel& kernel) {
 }  // namespace
 
 CovarianceBasis::CovarianceBasis(std::span<const std::size_t> m_list, std::size_t n_phase,
-                                 double tau0_s)
-    : k_(m_list.size()), products_(m_list.size() * m_list.size() * kProducts, 0.0) {
+                                 double tau0_s, double gm_time_s)
+    : k_(m_list.size()), products_(m_list.size() * m_list.size() * kProducts, 0.0),
+      gm_time_s_(gm_time_s) {
   for (std::size_t m : m_list) tau_s_.push_back(static_cast<double>(m) * tau0_s);
   for (std::size_t i = 0; i < k_; ++i) {
     if (m_list[i] == 0 || n_phase <= 2 * m_list[i]) {
@@ -162,6 +208,9 @@ CovarianceBasis::CovarianceBasis(std::span<const std::size_t> m_list, std::size_
     }
   }
   if (!(tau0_s > 0.0)) throw InputError("curve covariance: tau0 must be positive");
+  if (!(gm_time_s >= 0.0) || !std::isfinite(gm_time_s)) {
+    throw InputError("curve covariance: the Gauss-Markov correlation time must be >= 0");
+  }
   for (std::size_t i = 0; i < k_; ++i) {
     for (std::size_t j = i; j < k_; ++j) {
       PairKernel kernel{};
@@ -170,6 +219,7 @@ CovarianceBasis::CovarianceBasis(std::span<const std::size_t> m_list, std::size_
       kernel.ni = static_cast<double>(n_phase - 2 * m_list[i]);
       kernel.nj = static_cast<double>(n_phase - 2 * m_list[j]);
       kernel.tau0 = tau0_s;
+      kernel.gm_time_s = gm_time_s;
       const double ti = kernel.mi * tau0_s;
       const double tj = kernel.mj * tau0_s;
       const double scale = 2.0 / (4.0 * ti * ti * tj * tj * kernel.ni * kernel.nj);
@@ -183,7 +233,8 @@ CovarianceBasis::CovarianceBasis(std::span<const std::size_t> m_list, std::size_
   }
 }
 
-std::vector<double> CovarianceBasis::covariance(std::span<const double> theta) const {
+std::vector<double> CovarianceBasis::covariance(std::span<const double> theta,
+                                                double gm_variance) const {
   if (theta.size() != static_cast<std::size_t>(kTermCount)) {
     throw InputError("curve covariance: theta needs 5 entries (Q^2, N^2, B^2, K^2, R^2)");
   }
@@ -194,7 +245,8 @@ std::vector<double> CovarianceBasis::covariance(std::span<const double> theta) c
     // (theta_K + 1.5 R^2 tau): see the header.
     const double tau_ij = std::sqrt(tau_s_[e / k_] * tau_s_[e % k_]);
     std::array<double, kRandom> t{};
-    for (int a = 0; a < kRandom; ++a) t[static_cast<std::size_t>(a)] = std::max(0.0, theta[static_cast<std::size_t>(a)]);
+    for (int a = 0; a < kRandom - 1; ++a) t[static_cast<std::size_t>(a)] = std::max(0.0, theta[static_cast<std::size_t>(a)]);
+    t[kRandom - 1] = gm_time_s_ > 0.0 ? std::max(0.0, gm_variance) : 0.0;
     t[static_cast<std::size_t>(kK)] += 1.5 * theta_r * tau_ij;
     std::array<double, kProducts> coef{};
     int idx = 0;

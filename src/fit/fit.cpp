@@ -11,32 +11,28 @@
 
 #include <Eigen/Dense>
 #include <boost/math/distributions/normal.hpp>
-#include <cstdarg>
-#include <cstdio>
 
 #include "imunoise/allan.hpp"
 #include "imunoise/confidence/edf.hpp"
 #include "imunoise/confidence/interval.hpp"
 #include "imunoise/error.hpp"
+#include "extra_terms_fit.hpp"
+#include "format.hpp"
+#include "least_squares.hpp"
 
 namespace imunoise::fit {
 namespace {
 
-// printf-style formatting (the library does not depend on fmt).
-std::string strf(const char* format, ...) __attribute__((format(printf, 1, 2)));
-std::string strf(const char* format, ...) {
-  char buffer[1024];
-  va_list args;
-  va_start(args, format);
-  std::vsnprintf(buffer, sizeof buffer, format, args);
-  va_end(args);
-  return buffer;
-}
+using detail::strf;
 
 constexpr double kFloor = 2.0 * std::numbers::ln2 / std::numbers::pi;  // B^2 -> sigma^2 floor
 
-using Matrix = Eigen::MatrixXd;
-using Vector = Eigen::VectorXd;
+using detail::Matrix;
+using detail::nnls;
+using detail::subset_ls;
+using detail::to_matrix;
+using detail::Vector;
+using detail::whitener;
 
 double normal_quantile(double level) {
   const boost::math::normal_distribution<double> normal;
@@ -56,72 +52,6 @@ Matrix design(const Curve& c) {
     for (int j = 0; j < kTermCount; ++j) g(static_cast<Eigen::Index>(i), j) = term_basis(j, c.tau[i]);
   }
   return g;
-}
-
-/// Least squares on the listed columns of (already whitened) a, b; column-scaled QR.
-Vector subset_ls(const Matrix& a, const Vector& b, const std::vector<int>& cols, double* rss) {
-  Matrix sub(a.rows(), static_cast<Eigen::Index>(cols.size()));
-  Vector scale(static_cast<Eigen::Index>(cols.size()));
-  for (std::size_t c = 0; c < cols.size(); ++c) {
-    const auto ci = static_cast<Eigen::Index>(c);
-    const double nrm = a.col(cols[c]).norm();
-    scale(ci) = nrm > 0 ? 1.0 / nrm : 1.0;
-    sub.col(ci) = a.col(cols[c]) * scale(ci);
-  }
-  const Eigen::ColPivHouseholderQR<Matrix> qr(sub);
-  Vector x = qr.solve(b);
-  if (rss != nullptr) *rss = (sub * x - b).squaredNorm();
-  return x.cwiseProduct(scale);
-}
-
-/// Non-negative least squares by enumeration of the free sets (5 terms: at most 31 solves),
-/// with model selection: the chosen set minimises rss + penalty * |set| (rss of the whitened
-/// system = chi^2; penalty ln(k) is the Bayesian information criterion, 0 plain NNLS).
-/// Returns theta (zeros outside the set) and the set.
-Vector nnls(const Matrix& a, const Vector& b, const std::vector<int>& fitted,
-            std::vector<int>* free_set, double penalty) {
-  const int nf = static_cast<int>(fitted.size());
-  double best = std::numeric_limits<double>::infinity();
-  Vector best_theta = Vector::Zero(kTermCount);
-  free_set->clear();
-  for (int mask = 1; mask < (1 << nf); ++mask) {
-    std::vector<int> cols;
-    for (int t = 0; t < nf; ++t) {
-      if ((mask >> t) & 1) cols.push_back(fitted[static_cast<std::size_t>(t)]);
-    }
-    if (static_cast<Eigen::Index>(cols.size()) > a.rows()) continue;
-    double rss = 0.0;
-    const Vector x = subset_ls(a, b, cols, &rss);
-    if ((x.array() <= 0.0).any() || !x.allFinite()) continue;
-    rss += penalty * static_cast<double>(cols.size());
-    if (rss < best * (1.0 - 1e-12)) {
-      best = rss;
-      best_theta.setZero();
-      for (std::size_t c = 0; c < cols.size(); ++c) best_theta(cols[c]) = x(static_cast<Eigen::Index>(c));
-      *free_set = cols;
-    }
-  }
-  return best_theta;
-}
-
-Matrix to_matrix(const std::vector<double>& v, std::size_t k) {
-  Matrix m(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(k));
-  for (std::size_t i = 0; i < k; ++i) {
-    for (std::size_t j = 0; j < k; ++j) m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = v[i * k + j];
-  }
-  return m;
-}
-
-/// Whitening transform W with W Sigma W' = I (W = L^-1 D^-1, D = diag sqrt(Sigma_ii)).
-Matrix whitener(const Matrix& sigma, bool full) {
-  const Vector d = sigma.diagonal().cwiseMax(std::numeric_limits<double>::min()).cwiseSqrt();
-  if (!full) return d.cwiseInverse().asDiagonal();
-  Matrix r = d.cwiseInverse().asDiagonal() * sigma * d.cwiseInverse().asDiagonal();
-  r.diagonal().array() += 1e-9;
-  const Eigen::LLT<Matrix> llt(r);
-  if (llt.info() != Eigen::Success) return d.cwiseInverse().asDiagonal();
-  const Matrix linv = llt.matrixL().solve(Matrix::Identity(r.rows(), r.cols()));
-  return linv * d.cwiseInverse().asDiagonal();
 }
 
 /// Covariance of the linear estimator x = A y restricted to cols, given Cov(y) = sigma:
@@ -249,8 +179,8 @@ Method parse_method(std::string_view text) {
 }
 
 const char* term_name(int term) {
-  static const char* names[kTermCount] = {"Q", "N", "B", "K", "R"};
-  return term >= 0 && term < kTermCount ? names[term] : "?";
+  static const char* names[] = {"Q", "N", "B", "K", "R", "GM", "SIN"};
+  return term >= 0 && term <= kSIN ? names[term] : "?";
 }
 
 double term_basis(int term, double tau_s) {
@@ -285,6 +215,9 @@ bool FitOptions::IsValid(std::string* error) const {
   bool any = false;
   for (bool t : terms) any = any || t;
   if (!any) return fail("at least one term must be fitted");
+  if ((gauss_markov || sinusoid) && method != Method::wls) {
+    return fail("the Gauss-Markov and sinusoid terms are fitted by the wls method only");
+  }
   return true;
 }
 
@@ -695,6 +628,9 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
       coef.note = "significant, but it dominates at no measured tau: extrapolated from the "
                   "other terms' range";
     }
+  }
+  if (options.gauss_markov || options.sinusoid) {
+    detail::fit_extra_terms({curve.m, curve.tau, curve.avar}, n_phase, tau0_s, options, result);
   }
   return result;
 }

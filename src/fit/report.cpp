@@ -14,15 +14,67 @@ nlohmann::json number(double v) {
 // Eqs. 1-2 exist only with both N and K: 0 from the fit means "not available".
 nlohmann::json positive(double v) { return v > 0.0 ? number(v) : nlohmann::json(nullptr); }
 
+nlohmann::json coefficient_json(const Coefficient& c, double to_unit, const std::string& unit) {
+  nlohmann::json j{{"value", number(c.value / to_unit)}, {"unit", unit},
+                   {"ci_low", number(c.ci_low / to_unit)}, {"ci_high", number(c.ci_high / to_unit)},
+                   {"identified", c.identified}};
+  if (!c.note.empty()) j["note"] = c.note;
+  return j;
+}
+
+nlohmann::json test_json(const ExtraTermTest& t) {
+  nlohmann::json j{{"selected", t.selected}, {"delta_chi2", number(t.delta_chi2)},
+                   {"bic_penalty", number(t.penalty)}, {"dominant_taus", t.dominant_taus},
+                   {"verdict", t.verdict}};
+  if (t.tau_max_s > 0) j["dominates_tau_s"] = {t.tau_min_s, t.tau_max_s};
+  return j;
+}
+
+/// "GM" {sigma, correlation_time_s, test} and "SIN" {amplitude, frequency_hz, test}; rate-like
+/// values in the record's unit (and deg/h for a gyro).
+void add_extra_terms(const RecordInfo& record, const FitOptions& options, const FitResult& r,
+                     nlohmann::json& terms) {
+  const double f = record.rate_unit.to_si;
+  auto rate_json = [&](const Coefficient& c) {
+    nlohmann::json j = coefficient_json(c, f, record.unit_label);
+    if (record.gyro) {
+      const auto& cu = customary_gyro_B;  // a rate: deg/h
+      j["customary"] = {{"value", number(c.value / cu.to_si)}, {"unit", cu.name},
+                        {"ci_low", number(c.ci_low / cu.to_si)},
+                        {"ci_high", number(c.ci_high / cu.to_si)}};
+    }
+    return j;
+  };
+  if (options.gauss_markov) {
+    nlohmann::json gm{{"fitted", true}, {"test", test_json(r.extras.gauss_markov)}};
+    if (r.coefficients.gauss_markov) {
+      gm["sigma"] = rate_json(r.coefficients.gauss_markov->sigma);
+      gm["correlation_time_s"] = coefficient_json(r.coefficients.gauss_markov->correlation_time_s, 1.0, "s");
+    }
+    terms["GM"] = std::move(gm);
+  }
+  if (options.sinusoid) {
+    nlohmann::json sin{{"fitted", true}, {"test", test_json(r.extras.sinusoid)}};
+    if (r.coefficients.sinusoid) {
+      sin["amplitude"] = rate_json(r.coefficients.sinusoid->amplitude);
+      sin["frequency_hz"] = coefficient_json(r.coefficients.sinusoid->frequency_hz, 1.0, "Hz");
+    }
+    terms["SIN"] = std::move(sin);
+  }
+}
+
 }  // namespace
 
 void parse_terms(std::string_view list, FitOptions& options) {
   for (bool& t : options.terms) t = false;
+  options.gauss_markov = options.sinusoid = false;
   std::size_t start = 0;
   while (start <= list.size()) {
     const std::size_t comma = std::min(list.find(',', start), list.size());
     const std::string_view name = list.substr(start, comma - start);
     bool found = false;
+    if (name == "GM") options.gauss_markov = found = true;
+    if (name == "SIN") options.sinusoid = found = true;
     for (int j = 0; j < kTermCount; ++j) {
       if (name == term_name(j)) {
         options.terms[j] = true;
@@ -31,7 +83,8 @@ void parse_terms(std::string_view list, FitOptions& options) {
     }
     if (!found) {
       throw InputError("--terms: unknown term '" + std::string(name) +
-                       "'; use a comma list of Q,N,B,K,R");
+                       "'; use a comma list of Q,N,B,K,R and the optional GM (Gauss-Markov) and "
+                       "SIN (sinusoid)");
     }
     start = comma + 1;
   }
@@ -83,6 +136,7 @@ nlohmann::json report_json(const RecordInfo& record, const FitOptions& options,
     }
     terms[term_name(j)] = std::move(t);
   }
+  if (options.gauss_markov || options.sinusoid) add_extra_terms(record, options, r, terms);
   const auto& s = r.summary;
   nlohmann::json residuals = nlohmann::json::array();
   for (const auto& p : r.residuals) {

@@ -57,6 +57,44 @@ TEST(CliFit, JsonFollowsTheInterfaceContract) {
   }
 }
 
+TEST(CliFit, OptionalGaussMarkovAndSinusoidTerms) {
+  // 30 min at 200 Hz with a Gauss-Markov term (1.5e-3 deg/s, 2 s): sigma scatters ~6% run to
+  // run at this length (the 1 h Monte-Carlo study scatters 4.3%), so 25% is a 4-sigma bound.
+  TempDir dir;
+  const std::string file = dir.file("gm.txt");
+  const auto sim = run_cli({"simulate", "--rate", "200", "--duration", "1800", "--N", "8.9e-4",
+                            "--B", "5.9e-4", "--gm-sigma", "1.5e-3", "--gm-tau", "2",
+                            "--units", "deg/s", "--seed", "4", "-o", file});
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const auto r = run_cli({"fit", file, "--units", "deg/s", "--terms", "Q,N,B,K,GM,SIN"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& gm = j["terms"]["GM"];
+  EXPECT_TRUE(gm["test"]["selected"].get<bool>()) << gm.dump();
+  EXPECT_TRUE(gm["sigma"]["identified"].get<bool>());
+  EXPECT_EQ(gm["sigma"]["unit"], "deg/s");
+  EXPECT_EQ(gm["sigma"]["customary"]["unit"], "deg/h");
+  EXPECT_NEAR(gm["sigma"]["value"].get<double>() / 1.5e-3, 1.0, 0.25);
+  EXPECT_EQ(gm["correlation_time_s"]["unit"], "s");
+  EXPECT_NEAR(gm["correlation_time_s"]["value"].get<double>() / 2.0, 1.0, 0.25);
+  EXPECT_FALSE(j["terms"]["SIN"]["test"]["selected"].get<bool>());
+  EXPECT_FALSE(j["terms"]["SIN"]["amplitude"]["identified"].get<bool>());
+  EXPECT_EQ(r.out.find("NaN"), std::string::npos);
+  bool gm_row = false;
+  for (const auto& p : j["diagnostics"]["residuals"]) gm_row = gm_row || p["dominant_term"] == "GM";
+  EXPECT_TRUE(gm_row);
+
+  const auto t = run_cli({"fit", file, "--units", "deg/s", "--terms", "N,B,GM", "--format", "table"});
+  ASSERT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_NE(t.out.find("GMs"), std::string::npos) << t.out;
+  EXPECT_NE(t.out.find("GMt"), std::string::npos) << t.out;
+  EXPECT_EQ(t.out.find(" nan"), std::string::npos) << t.out;
+
+  const auto o = run_cli({"fit", file, "--units", "deg/s", "--terms", "N,GM", "--method", "ols"});
+  EXPECT_EQ(o.exit_code, 1);
+  EXPECT_NE(o.err.find("wls"), std::string::npos) << o.err;
+}
+
 TEST(CliFit, BadInputGivesClearMessages) {
   TempDir dir;
   std::string zeros;

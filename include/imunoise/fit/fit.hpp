@@ -44,6 +44,7 @@
 #include <vector>
 
 #include "imunoise/deviation.hpp"
+#include "imunoise/fit/extra_terms.hpp"
 #include "imunoise/noise_coefficients.hpp"
 
 namespace imunoise::fit {
@@ -54,10 +55,11 @@ std::string method_name(Method method);
 /// Parses "wls", "ols" or "slope"; InputError otherwise.
 Method parse_method(std::string_view text);
 
-/// Indices of the five power-law terms in theta and in every per-term array.
-enum Term : int { kQ = 0, kN = 1, kB = 2, kK = 3, kR = 4 };
+/// Indices of the five power-law terms in theta and in every per-term array; the optional
+/// terms (extra_terms.hpp) follow them where a model index is needed (dominant_term).
+enum Term : int { kQ = 0, kN = 1, kB = 2, kK = 3, kR = 4, kGM = 5, kSIN = 6 };
 inline constexpr int kTermCount = 5;
-/// "Q", "N", "B", "K", "R".
+/// "Q", "N", "B", "K", "R", and "GM", "SIN" for the optional terms.
 const char* term_name(int term);
 
 /// The coefficient of term j (kQ .. kR) in c.
@@ -83,6 +85,9 @@ struct FitOptions {
   /// tell apart and a free R was falsely identified in ~25% of simulated 6 h TG-100 records
   /// (docs/fit.md); ask for it (--terms Q,N,B,K,R) when a ramp is expected.
   bool terms[kTermCount] = {true, true, true, true, false};
+  /// Optional terms (wls only; extra_terms.hpp): tested, kept when the data support them.
+  bool gauss_markov = false;
+  bool sinusoid = false;
   double level = 0.95;          ///< two-sided confidence level of every interval, 0 < L < 1
   int max_iterations = 8;       ///< wls re-weighting iterations (>= 1)
   /// Stop when every theta_j changes by less than this fraction of its standard deviation.
@@ -116,7 +121,7 @@ struct TauResidual {
   double avar_model = 0.0;  ///< fitted model sigma^2 (SI)
   double sd_model = 0.0;    ///< standard deviation of the estimate under the model (SI)
   double normalized = 0.0;  ///< (avar - avar_model) / sd_model
-  int dominant_term = -1;   ///< term contributing most to avar_model (-1: none)
+  int dominant_term = -1;   ///< term contributing most to avar_model (kQ..kSIN; -1: none)
 };
 
 /// Per-term detail behind the coefficient.
@@ -154,6 +159,9 @@ struct FitResult {
   double avar_min_measured = 0.0;
   double tau_min_measured_s = 0.0;
   FitSummary summary;
+  /// The tests of the optional terms; their coefficients are in coefficients.gauss_markov /
+  /// coefficients.sinusoid (set whenever the term was requested).
+  ExtraTermsReport extras;
 };
 
 /// Fits the noise model to an oadev curve (points from compute_deviation(oadev, ...), SI).
@@ -193,18 +201,24 @@ FitResult fit_record(std::span<const double> phase_si, double tau0_s,
 /// The same covariance as a quadratic form in theta, precomputed for one curve layout: the
 /// construction does the lag sums (about 10 ms for 22 octave taus), covariance() is then
 /// O(k^2) for any theta.
+/// gm_time_s > 0 adds a first-order Gauss-Markov term with that correlation time (phase
+/// covariance -sigma^2 (T^2 e^-|t|/T + T |t|)); its variance sigma^2 is then an argument of
+/// covariance(). Construction takes longer with it (its pieces are cut finer).
 class CovarianceBasis {
  public:
-  CovarianceBasis(std::span<const std::size_t> m_list, std::size_t n_phase, double tau0_s);
-  /// Row-major k x k covariance for theta = (Q^2, N^2, B^2, K^2, R^2); negative entries are
-  /// treated as 0.
-  std::vector<double> covariance(std::span<const double> theta) const;
+  CovarianceBasis(std::span<const std::size_t> m_list, std::size_t n_phase, double tau0_s,
+                  double gm_time_s = 0.0);
+  /// Row-major k x k covariance for theta = (Q^2, N^2, B^2, K^2, R^2) and the Gauss-Markov
+  /// variance sigma^2 (ignored without gm_time_s); negative entries are treated as 0.
+  std::vector<double> covariance(std::span<const double> theta, double gm_variance = 0.0) const;
   std::size_t size() const { return k_; }
+  double gm_time_s() const { return gm_time_s_; }
 
  private:
   std::size_t k_;
   std::vector<double> products_;  // (i, j, product) -> sum
   std::vector<double> tau_s_;
+  double gm_time_s_ = 0.0;
 };
 
 std::vector<double> curve_covariance(std::span<const std::size_t> m_list, std::size_t n_phase,

@@ -26,7 +26,8 @@ struct RecordInfo {
   bool gyro = false;        ///< unit given and an angular rate: customary units are added
 };
 
-/// Sets options.terms from "Q,N,B,K[,R]"; InputError naming an unknown or empty term.
+/// Sets options.terms (and gauss_markov, sinusoid) from a comma list of Q, N, B, K, R, GM and
+/// SIN; InputError naming an unknown or empty term.
 void parse_terms(std::string_view list, FitOptions& options);
 
 /// "none", "aic" or "bic"; InputError otherwise.
@@ -41,7 +42,8 @@ const CustomaryUnit& customary_unit(int term);
 
 /// The JSON document of the contract (docs/fit.md): unit, method, level, source, rate_hz,
 /// n_samples, terms{Q..R: value, unit, ci_low, ci_high, identified, fitted, estimate, note,
-/// dominates_tau_s, customary}, paper{...}, diagnostics{...}. Values in the record's unit;
+/// dominates_tau_s, customary}, and when requested GM{sigma, correlation_time_s, test} and
+/// SIN{amplitude, frequency_hz, test}, paper{...}, diagnostics{...}. Values in the record's unit;
 /// absent numbers (eqs. 1-2 without N or K, non-finite bounds) are null, never NaN.
 nlohmann::json report_json(const RecordInfo& record, const FitOptions& options,
                            const FitResult& result);

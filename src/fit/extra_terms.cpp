@@ -1,0 +1,692 @@
+// Optional Gauss-Markov and sinusoid terms (include/imunoise/fit/extra_terms.hpp): variable
+// projection over T_c / f0 around non-negative generalised least squares, BIC selection,
+// profile-likelihood intervals.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "extra_terms_fit.hpp"
+#include "imunoise/confidence/edf.hpp"
+#include "imunoise/confidence/interval.hpp"
+#include "imunoise/sim/gauss_markov.hpp"
+#include "format.hpp"
+#include "least_squares.hpp"
+
+namespace imunoise::fit {
+
+double gauss_markov_basis(double tc_s, double tau_s) {
+  return sim::gauss_markov_allan_variance(1.0, tc_s, tau_s);
+}
+
+double sinusoid_basis(double f_hz, double tau_s) {
+  const double x = std::numbers::pi * f_hz * tau_s;
+  if (x == 0.0) return 0.0;
+  const double s = std::sin(x);
+  const double v = s * s / x;
+  return v * v;
+}
+
+namespace detail {
+namespace {
+
+constexpr int kCols = kSIN + 1;  // Q N B K R GM SIN
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+/// Nonlinear parameters of the optional terms.
+struct Params {
+  double tc_s = 1.0;
+  double f_hz = 1.0;
+  double& of(int term) { return term == kGM ? tc_s : f_hz; }
+  double of(int term) const { return term == kGM ? tc_s : f_hz; }
+};
+
+double column(int c, double tau_s, const Params& p) {
+  if (c < kTermCount) return term_basis(c, tau_s);
+  return c == kGM ? gauss_markov_basis(p.tc_s, tau_s) : sinusoid_basis(p.f_hz, tau_s);
+}
+
+double model_at(const Vector& theta, const Params& p, double tau_s, int first, int last) {
+  double s = 0.0;
+  for (int c = first; c <= last; ++c) {
+    if (theta(c) > 0.0) s += theta(c) * column(c, tau_s, p);
+  }
+  return s;
+}
+
+/// A linear coefficient held at a value (profile likelihood), or none (col < 0).
+struct Fixed {
+  int col = -1;
+  double value = 0.0;
+};
+
+struct Solution {
+  Vector theta = Vector::Zero(kCols);
+  Params p;
+  double rss = kInf;
+  std::vector<int> set;  ///< columns with a positive coefficient (fixed one excluded)
+};
+
+/// The fit with its weights (model covariance) held fixed: whitened data and design.
+class Weighted {
+ public:
+  Weighted(const CurveView& curve, const Matrix& sigma)
+      : tau_(curve.tau_s.begin(), curve.tau_s.end()), w_(whitener(sigma, true)) {
+    const auto k = static_cast<Eigen::Index>(tau_.size());
+    y_ = w_ * Eigen::Map<const Vector>(curve.avar.data(), k);
+    Matrix g(k, kTermCount);
+    for (Eigen::Index i = 0; i < k; ++i) {
+      for (int c = 0; c < kTermCount; ++c) g(i, c) = term_basis(c, tau_[static_cast<std::size_t>(i)]);
+    }
+    power_law_ = w_ * g;
+  }
+
+  /// Whitened column c at the nonlinear parameters p.
+  Vector whitened_column(int c, const Params& p) const {
+    if (c < kTermCount) return power_law_.col(c);
+    Vector g(static_cast<Eigen::Index>(tau_.size()));
+    for (std::size_t i = 0; i < tau_.size(); ++i) g(static_cast<Eigen::Index>(i)) = column(c, tau_[i], p);
+    return w_ * g;
+  }
+
+  /// Least squares of the data on `cols` at p with `fixed` held. exhaustive: non-negative
+  /// over every subset of cols; otherwise plain least squares on cols, falling back to the
+  /// non-negative search only when a coefficient comes out negative (profiles: fast).
+  /// hint: a likely optimal set (the neighbouring trial's); used when it satisfies the
+  /// optimality (KKT) conditions, which makes the answer the same as the full search's.
+  Solution solve(const std::vector<int>& cols, const Params& p, const Fixed& fixed,
+                 bool exhaustive, const std::vector<int>* hint = nullptr) const {
+    Solution s;
+    s.p = p;
+    Matrix a(y_.size(), kCols);
+    a.setZero();
+    Vector b = y_;
+    if (fixed.col >= 0) b -= fixed.value * whitened_column(fixed.col, p);
+    std::vector<int> free;
+    for (int c : cols) {
+      if (c == fixed.col) continue;
+      a.col(c) = whitened_column(c, p);
+      free.push_back(c);
+    }
+    if (fixed.col >= 0) s.theta(fixed.col) = fixed.value;
+    if (free.empty()) {
+      s.rss = b.squaredNorm();
+      return s;
+    }
+    if (!exhaustive) {
+      double rss = 0.0;
+      const Vector x = subset_ls(a, b, free, &rss);
+      if ((x.array() >= 0.0).all() && x.allFinite()) {
+        for (std::size_t c = 0; c < free.size(); ++c) s.theta(free[c]) = x(static_cast<Eigen::Index>(c));
+        s.rss = rss;
+        s.set = free;
+        return s;
+      }
+    }
+    if (hint != nullptr && !hint->empty()) {
+      // Non-negative least squares is convex: a set whose solution is positive and whose
+      // left-out columns all point uphill (a_c' r <= 0) is the optimum.
+      std::vector<int> set;
+      for (int c : *hint) {
+        if (std::find(free.begin(), free.end(), c) != free.end()) set.push_back(c);
+      }
+      if (!set.empty()) {
+        double rss = 0.0;
+        const Vector x = subset_ls(a, b, set, &rss);
+        if ((x.array() > 0.0).all() && x.allFinite()) {
+          Vector theta = Vector::Zero(kCols);
+          for (std::size_t c = 0; c < set.size(); ++c) theta(set[c]) = x(static_cast<Eigen::Index>(c));
+          const Vector r = b - a * theta;
+          bool optimal = true;
+          for (int c : free) {
+            if (theta(c) == 0.0 && a.col(c).dot(r) > 1e-12 * a.col(c).norm() * r.norm()) optimal = false;
+          }
+          if (optimal) {
+            for (int c : set) s.theta(c) = theta(c);
+            s.rss = rss;
+            s.set = set;
+            return s;
+          }
+        }
+      }
+    }
+    double rss = 0.0;
+    const Vector x = nnls(a, b, free, &s.set, 0.0, &rss);
+    for (int c : free) s.theta(c) = x(c);
+    s.rss = rss;
+    return s;
+  }
+
+ private:
+  std::vector<double> tau_;
+  Matrix w_;
+  Vector y_;
+  Matrix power_law_;
+};
+
+/// Log-spaced trial values of each nonlinear parameter over what the taus can see.
+struct Grids {
+  std::vector<double> tc_s;
+  std::vector<double> f_hz;
+  const std::vector<double>& of(int term) const { return term == kGM ? tc_s : f_hz; }
+};
+
+std::vector<double> log_grid(double lo, double hi, double per_decade) {
+  std::vector<double> g;
+  const int n = std::max(2, static_cast<int>(std::ceil(std::log10(hi / lo) * per_decade)) + 1);
+  for (int i = 0; i < n; ++i) g.push_back(lo * std::pow(hi / lo, static_cast<double>(i) / (n - 1)));
+  return g;
+}
+
+Grids make_grids(const CurveView& curve, double tau0_s) {
+  const double tau_lo = curve.tau_s.front();
+  const double tau_hi = curve.tau_s.back();
+  Grids g;
+  // A Gauss-Markov term peaks at 1.89 T_c and is white / a random walk an octave or two away:
+  // below tau_lo/4 it is white noise, above 2 tau_hi a rate random walk on the whole curve.
+  g.tc_s = log_grid(tau_lo / 4.0, 2.0 * tau_hi, 8.0);
+  // A sinusoid peaks at tau = 0.371 / f0; its curve oscillates (zeros at tau = n / f0), hence
+  // the dense grid. Up to the Nyquist frequency.
+  g.f_hz = log_grid(0.2 / tau_hi, std::min(0.5 / tau0_s, 2.0 / tau_lo), 40.0);
+  return g;
+}
+
+/// Minimises the rss over the nonlinear parameter of term e (grid, then golden section in log
+/// between the best grid point's neighbours), everything else as in `start`.
+Solution optimise(const Weighted& w, const Grids& grids, const std::vector<int>& cols,
+                  Params start, int e, const Fixed& fixed, bool exhaustive) {
+  const auto& grid = grids.of(e);
+  Solution best;
+  std::size_t best_i = 0;
+  std::vector<int> hint;
+  for (std::size_t i = 0; i < grid.size(); ++i) {
+    Params p = start;
+    p.of(e) = grid[i];
+    Solution s = w.solve(cols, p, fixed, exhaustive, &hint);
+    hint = s.set;
+    if (s.rss < best.rss) {
+      best = std::move(s);
+      best_i = i;
+    }
+  }
+  double a = std::log(grid[best_i == 0 ? 0 : best_i - 1]);
+  double b = std::log(grid[std::min(best_i + 1, grid.size() - 1)]);
+  const double r = 0.5 * (std::sqrt(5.0) - 1.0);
+  auto eval = [&](double x) {
+    Params p = start;
+    p.of(e) = std::exp(x);
+    return w.solve(cols, p, fixed, exhaustive, &best.set);
+  };
+  double x1 = b - r * (b - a), x2 = a + r * (b - a);
+  Solution s1 = eval(x1), s2 = eval(x2);
+  for (int it = 0; it < 30 && b - a > 1e-5; ++it) {
+    if (s1.rss < s2.rss) {
+      b = x2;
+      x2 = x1;
+      s2 = std::move(s1);
+      x1 = b - r * (b - a);
+      s1 = eval(x1);
+    } else {
+      a = x1;
+      x1 = x2;
+      s1 = std::move(s2);
+      x2 = a + r * (b - a);
+      s2 = eval(x2);
+    }
+  }
+  for (Solution* s : {&s1, &s2}) {
+    if (s->rss < best.rss) best = std::move(*s);
+  }
+  return best;
+}
+
+/// chi^2-minimal solution over the linear coefficients of `cols` and the nonlinear parameters
+/// of the optional terms among them (except `held`, kept at start's value): coordinate descent.
+Solution best_fit(const Weighted& w, const Grids& grids, const std::vector<int>& cols,
+                  const Params& start, const Fixed& fixed, int held, bool exhaustive) {
+  std::vector<int> nonlinear;
+  for (int c : cols) {
+    if (c >= kGM && c != held) nonlinear.push_back(c);
+  }
+  if (nonlinear.empty()) return w.solve(cols, start, fixed, exhaustive);
+  Solution s;
+  s.p = start;
+  const int rounds = nonlinear.size() > 1 ? 3 : 1;
+  for (int round = 0; round < rounds; ++round) {
+    for (int e : nonlinear) s = optimise(w, grids, cols, s.p, e, fixed, exhaustive);
+  }
+  return s;
+}
+
+/// Covariance of the Allan variance estimates under the extended model: exact for the
+/// power-law and Gauss-Markov terms (CovarianceBasis with the term's T_c); a sinusoid is
+/// deterministic and enters by rescaling each tau's row and column by (model with it) /
+/// (model without it), which overstates its variance (conservative).
+Matrix model_covariance(const CovarianceBasis& basis, const CurveView& curve,
+                        std::size_t n_phase, double tau0_s, const Vector& theta, const Params& p) {
+  const auto k = curve.tau_s.size();
+  std::vector<double> pl(kTermCount);
+  for (int j = 0; j < kTermCount; ++j) pl[static_cast<std::size_t>(j)] = std::max(0.0, theta(j));
+  const double gm = std::max(0.0, theta(kGM));
+  Matrix s = gm > 0.0 ? to_matrix(CovarianceBasis(curve.m, n_phase, tau0_s, p.tc_s).covariance(pl, gm), k)
+                      : to_matrix(basis.covariance(pl), k);
+  for (std::size_t i = 0; i < k; ++i) {
+    const auto ii = static_cast<Eigen::Index>(i);
+    const double random = model_at(theta, p, curve.tau_s[i], 0, kGM);
+    const double all = model_at(theta, p, curve.tau_s[i], 0, kCols - 1);
+    // A tau with no random variance gets the rough IEEE 952 variance of its estimate.
+    if (!(random > 0.0)) {
+      s.row(ii).setZero();
+      s.col(ii).setZero();
+      s(ii, ii) = 2.0 * all * all / std::max(1.0, ieee952_edf(curve.m[i], n_phase));
+      continue;
+    }
+    const double ratio = all / random;
+    s.row(ii) *= ratio;
+    s.col(ii) *= ratio;
+    s(ii, ii) += (1e-12 * all) * (1e-12 * all);  // the floor of the power-law fit
+  }
+  return s;
+}
+
+/// Taus at which column e is the largest part of the model, and their range.
+int dominance(const CurveView& curve, const Vector& theta, const Params& p, int e,
+              double* tau_min_s, double* tau_max_s) {
+  int count = 0;
+  *tau_min_s = *tau_max_s = 0.0;
+  for (double tau : curve.tau_s) {
+    int best = -1;
+    double best_v = 0.0;
+    for (int c = 0; c < kCols; ++c) {
+      const double v = theta(c) > 0.0 ? theta(c) * column(c, tau, p) : 0.0;
+      if (v > best_v) {
+        best_v = v;
+        best = c;
+      }
+    }
+    if (best == e) {
+      ++count;
+      if (*tau_min_s == 0.0) *tau_min_s = tau;
+      *tau_max_s = tau;
+    }
+  }
+  return count;
+}
+
+/// A fit of the power-law terms plus `extras`, iterated so that its weights come from its
+/// own model, and the chi^2 rise when each extra is removed (same weights).
+struct Candidate {
+  std::vector<int> cols;
+  std::vector<int> extras;
+  Solution fit;
+  Matrix sigma;
+  double delta[kCols] = {};
+};
+
+class ExtraFitter {
+ public:
+  ExtraFitter(const CurveView& curve, std::size_t n_phase, double tau0_s, const FitOptions& options,
+              const FitResult& base)
+      : curve_(curve), n_phase_(n_phase), tau0_s_(tau0_s), basis_(curve.m, n_phase, tau0_s),
+        grids_(make_grids(curve, tau0_s)) {
+    for (int j = 0; j < kTermCount; ++j) {
+      if (options.terms[j]) power_law_.push_back(j);
+      base_theta_(j) = std::max(0.0, base.terms[j].theta);
+    }
+    start_.tc_s = std::sqrt(curve.tau_s.front() * curve.tau_s.back());
+    start_.f_hz = 1.0 / start_.tc_s;
+  }
+
+  Candidate evaluate(const std::vector<int>& extras) const {
+    Candidate c;
+    c.extras = extras;
+    c.cols = power_law_;
+    c.cols.insert(c.cols.end(), extras.begin(), extras.end());
+    Vector theta = base_theta_;
+    Params p = start_;
+    c.sigma = model_covariance(basis_, curve_, n_phase_, tau0_s_, theta, p);
+    for (int it = 0; it < 4; ++it) {
+      const Weighted w(curve_, c.sigma);
+      c.fit = best_fit(w, grids_, c.cols, p, {}, -1, true);
+      p = c.fit.p;
+      c.sigma = model_covariance(basis_, curve_, n_phase_, tau0_s_, c.fit.theta, p);
+    }
+    const Weighted w(curve_, c.sigma);
+    c.fit = best_fit(w, grids_, c.cols, p, {}, -1, true);
+    for (int e : extras) {
+      std::vector<int> without = c.cols;
+      without.erase(std::find(without.begin(), without.end(), e));
+      c.delta[e] = best_fit(w, grids_, without, c.fit.p, {}, -1, true).rss - c.fit.rss;
+    }
+    return c;
+  }
+
+  /// Profile-likelihood interval of linear column col of candidate c at chi^2 rise q. Returns
+  /// false in *bounded when the data do not bound it from above.
+  void linear_interval(const Candidate& c, int col, double q, double* low, double* high,
+                       bool* bounded) const {
+    const Weighted w(curve_, c.sigma);
+    std::vector<int> cols = c.fit.set;
+    if (std::find(cols.begin(), cols.end(), col) == cols.end()) cols.push_back(col);
+    const double rss0 = c.fit.rss;
+    auto rise = [&](double h) {
+      return best_fit(w, grids_, cols, c.fit.p, {col, h}, -1, false).rss - rss0;
+    };
+    const double center = std::max(0.0, c.fit.theta(col));
+    // Scale of the coefficient: the model's level at the taus it shapes.
+    double step = center > 0.0 ? 0.5 * center : 0.0;
+    if (step == 0.0) {
+      double peak = 0.0;
+      for (std::size_t i = 0; i < curve_.tau_s.size(); ++i) {
+        peak = std::max(peak, curve_.avar[i] / std::max(column(col, curve_.tau_s[i], c.fit.p), 1e-300));
+      }
+      step = 1e-3 * std::min(peak, 1e300);
+    }
+    double a = center, b = center + step;
+    *bounded = true;
+    for (int expand = 0; rise(b) <= q; ++expand) {
+      if (expand == 60) {
+        *bounded = false;
+        break;
+      }
+      a = b;
+      b = center + 2.0 * (b - center);
+    }
+    for (int it = 0; *bounded && it < 40 && b - a > 1e-4 * (b - center); ++it) {
+      const double mid = 0.5 * (a + b);
+      (rise(mid) > q ? b : a) = mid;
+    }
+    *high = b;
+    *low = 0.0;
+    if (center > 0.0 && rise(0.0) > q) {
+      double lo = 0.0, hi = center;  // outside at lo, inside at hi
+      for (int it = 0; it < 40 && hi - lo > 1e-4 * center; ++it) {
+        const double mid = 0.5 * (lo + hi);
+        (rise(mid) > q ? lo : hi) = mid;
+      }
+      *low = hi;
+    }
+  }
+
+  /// Profile interval of the nonlinear parameter of term e: the hull of the grid values whose
+  /// chi^2 rise is at most q, edges refined by bisection in log. *bounded_low/high: false
+  /// when the hull reaches the end of the searched range.
+  void nonlinear_interval(const Candidate& c, int e, double q, double* low, double* high,
+                          bool* bounded_low, bool* bounded_high) const {
+    const Weighted w(curve_, c.sigma);
+    std::vector<int> cols = c.fit.set;
+    if (std::find(cols.begin(), cols.end(), e) == cols.end()) cols.push_back(e);
+    auto rise = [&](double v) {
+      Params p = c.fit.p;
+      p.of(e) = v;
+      return best_fit(w, grids_, cols, p, {}, e, false).rss - c.fit.rss;
+    };
+    const auto& grid = grids_.of(e);
+    const double best = c.fit.p.of(e);
+    std::size_t first = grid.size(), last = 0;
+    for (std::size_t i = 0; i < grid.size(); ++i) {
+      if (rise(grid[i]) <= q) {
+        first = std::min(first, i);
+        last = i;
+      }
+    }
+    auto refine = [&](double inside, double outside) {
+      double a = std::log(inside), b = std::log(outside);
+      for (int it = 0; it < 30 && std::abs(b - a) > 1e-4; ++it) {
+        const double mid = 0.5 * (a + b);
+        (rise(std::exp(mid)) <= q ? a : b) = mid;
+      }
+      return std::exp(a);
+    };
+    if (first > last) {  // only the refined optimum itself is inside
+      *low = *high = best;
+      const auto up = std::upper_bound(grid.begin(), grid.end(), best);
+      *bounded_low = up != grid.begin();
+      *bounded_high = up != grid.end();
+      if (*bounded_low) *low = refine(best, *(up - 1));
+      if (*bounded_high) *high = refine(best, *up);
+      return;
+    }
+    const double lo_in = std::min(grid[first], best);
+    const double hi_in = std::max(grid[last], best);
+    *bounded_low = first > 0;
+    *bounded_high = last + 1 < grid.size();
+    *low = *bounded_low ? refine(lo_in, grid[first - 1]) : grid.front();
+    *high = *bounded_high ? refine(hi_in, grid[last + 1]) : grid.back();
+  }
+
+  const CurveView& curve() const { return curve_; }
+  const Grids& grids() const { return grids_; }
+
+ private:
+  CurveView curve_;
+  std::size_t n_phase_;
+  double tau0_s_;
+  CovarianceBasis basis_;
+  Grids grids_;
+  std::vector<int> power_law_;
+  Vector base_theta_ = Vector::Zero(kCols);
+  Params start_;
+};
+
+const char* long_name(int e) { return e == kGM ? "Gauss-Markov term" : "sinusoid"; }
+
+/// Fills the test record of term e from candidate c.
+void describe(const ExtraFitter& f, const Candidate& c, int e, double penalty, int min_dominant,
+              ExtraTermTest* t) {
+  t->requested = true;
+  t->delta_chi2 = c.delta[e];
+  t->penalty = penalty;
+  t->dominant_taus = dominance(f.curve(), c.fit.theta, c.fit.p, e, &t->tau_min_s, &t->tau_max_s);
+  const bool strong = c.delta[e] > penalty;
+  const bool dominant = t->dominant_taus >= min_dominant;
+  t->selected = strong && dominant && c.fit.theta(e) > 0.0;
+  if (t->selected) {
+    t->verdict = strf("kept: it lowers chi^2 by %.3g (BIC price of its 2 parameters %.3g) and "
+                        "dominates the model at %d taus",
+                        c.delta[e], penalty, t->dominant_taus);
+  } else if (!strong) {
+    t->verdict = strf("not identified: adding it lowers chi^2 by %.3g only, not more than the "
+                        "BIC price of its 2 parameters (%.3g)",
+                        c.delta[e], penalty);
+  } else {
+    t->verdict = strf("not identified: it dominates the model at %d taus (needs %d): it "
+                        "cannot be separated from the power-law terms on this tau range",
+                        t->dominant_taus, min_dominant);
+  }
+}
+
+bool passes(const ExtraTermTest& t) { return t.selected; }
+
+}  // namespace
+
+void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
+                     const FitOptions& options, FitResult& result) {
+  const auto k = curve.tau_s.size();
+  std::vector<int> requested;
+  if (options.gauss_markov) requested.push_back(kGM);
+  if (options.sinusoid) requested.push_back(kSIN);
+  auto& coefs = result.coefficients;
+  auto mark_untested = [&](const std::string& why) {
+    for (int e : requested) {
+      ExtraTermTest& t = e == kGM ? result.extras.gauss_markov : result.extras.sinusoid;
+      t.requested = true;
+      t.verdict = why;
+      Coefficient none;
+      none.ci_low = 0.0;
+      none.note = why;
+      if (e == kGM) coefs.gauss_markov = GaussMarkovTerm{none, none};
+      else coefs.sinusoid = SinusoidTerm{none, none};
+    }
+  };
+  std::size_t power_law_count = 0;
+  for (bool t : options.terms) power_law_count += t;
+  if (k < power_law_count + 2 * requested.size() + 2) {
+    mark_untested(strf("not tested: %zu taus are too few for the power-law terms plus 2 "
+                         "parameters per optional term (use a denser --taus grid)",
+                         k));
+    return;
+  }
+  const ExtraFitter fitter(curve, n_phase, tau0_s, options, result);
+  const double penalty = 2.0 * std::log(static_cast<double>(k));
+  const double q = chi2_quantile(options.level, 1.0);
+
+  // Forward selection: each term alone against the power-law model, the stronger first, then
+  // the other on top of it.
+  std::vector<Candidate> singles;
+  ExtraTermTest tests[kCols];
+  for (int e : requested) {
+    singles.push_back(fitter.evaluate({e}));
+    describe(fitter, singles.back(), e, penalty, options.min_dominant_taus, &tests[e]);
+  }
+  int first = -1;
+  double first_delta = 0.0;
+  const Candidate* chosen = nullptr;
+  for (std::size_t i = 0; i < requested.size(); ++i) {
+    const int e = requested[i];
+    if (passes(tests[e]) && singles[i].delta[e] > first_delta) {
+      first = e;
+      first_delta = singles[i].delta[e];
+      chosen = &singles[i];
+    }
+  }
+  Candidate both;
+  if (first >= 0 && requested.size() == 2) {
+    const int other = first == kGM ? kSIN : kGM;
+    both = fitter.evaluate({first, other});
+    ExtraTermTest t_other, t_first;
+    describe(fitter, both, other, penalty, options.min_dominant_taus, &t_other);
+    describe(fitter, both, first, penalty, options.min_dominant_taus, &t_first);
+    if (passes(t_other) && passes(t_first)) {
+      chosen = &both;
+      tests[other] = t_other;
+      tests[first] = t_first;
+    }
+  }
+
+  // Coefficients of each requested term.
+  for (std::size_t i = 0; i < requested.size(); ++i) {
+    const int e = requested[i];
+    const bool kept = chosen != nullptr &&
+                      std::find(chosen->extras.begin(), chosen->extras.end(), e) != chosen->extras.end();
+    const Candidate& c = kept ? *chosen : singles[i];
+    ExtraTermTest& t = e == kGM ? result.extras.gauss_markov : result.extras.sinusoid;
+    t = tests[e];
+    t.selected = kept;
+    double lo = 0, hi = 0;
+    bool bounded = true;
+    fitter.linear_interval(c, e, q, &lo, &hi, &bounded);
+    Coefficient amp, par;
+    amp.ci_high = std::sqrt(hi);
+    par.note = amp.note = t.verdict;
+    if (!bounded) amp.note += "; the data do not bound it from above (ci_high is the last value tried)";
+    if (kept && lo > 0.0) {
+      amp.value = std::sqrt(c.fit.theta(e));
+      amp.ci_low = std::sqrt(lo);
+      amp.identified = true;
+      amp.note.clear();
+      double p_lo = 0, p_hi = 0;
+      bool b_lo = true, b_hi = true;
+      fitter.nonlinear_interval(c, e, q, &p_lo, &p_hi, &b_lo, &b_hi);
+      par.value = c.fit.p.of(e);
+      par.ci_low = p_lo;
+      par.ci_high = p_hi;
+      par.identified = b_lo && b_hi;
+      par.note.clear();
+      if (!par.identified) {
+        par.note = strf("the profile interval reaches the end of the searched range "
+                          "(%.4g .. %.4g): its %s bound is open",
+                          fitter.grids().of(e).front(), fitter.grids().of(e).back(),
+                          b_lo ? "upper" : "lower");
+      }
+    } else {
+      if (kept) t.verdict = "not identified: zero is inside its profile interval";
+      t.selected = false;
+      amp.ci_low = 0.0;
+      par.ci_low = par.ci_high = std::numeric_limits<double>::quiet_NaN();
+      // The best trial value, for the record (what the fit would have said).
+      par.note += strf("; best trial value %.4g", c.fit.p.of(e));
+    }
+    if (e == kGM) coefs.gauss_markov = GaussMarkovTerm{amp, par};
+    else coefs.sinusoid = SinusoidTerm{amp, par};
+  }
+
+  const bool any_kept = result.extras.gauss_markov.selected || result.extras.sinusoid.selected;
+  if (!any_kept || chosen == nullptr) return;
+
+  // A kept term changes the power-law coefficients: the joint fit's, with profile intervals.
+  result.extras.joint = true;
+  const Candidate& c = *chosen;
+  std::string with;
+  for (int e : c.extras) with += std::string(with.empty() ? "" : " and ") + "the " + long_name(e);
+  for (int j = 0; j < kTermCount; ++j) {
+    if (!options.terms[j]) continue;
+    auto& tf = result.terms[j];
+    auto& coef = coefficient(coefs, j);
+    double lo = 0, hi = 0;
+    bool bounded = true;
+    fitter.linear_interval(c, j, q, &lo, &hi, &bounded);
+    tf.theta = c.fit.theta(j);
+    tf.estimate = std::sqrt(std::max(0.0, tf.theta));
+    tf.theta_sd = (hi - lo) / (2.0 * std::sqrt(q));
+    double tmin = 0, tmax = 0;
+    const int dom = dominance(curve, c.fit.theta, c.fit.p, j, &tmin, &tmax);
+    tf.tau_min_s = tmin;
+    tf.tau_max_s = tmax;
+    coef.ci_high = std::sqrt(hi);
+    const bool sufficient = dom >= options.min_dominant_taus || tf.theta <= 0.0;
+    if (tf.theta > 0.0 && lo > 0.0 && sufficient) {
+      coef.value = tf.estimate;
+      coef.ci_low = std::sqrt(lo);
+      coef.identified = true;
+      coef.note = "joint fit with " + with + "; profile-likelihood interval";
+    } else {
+      coef.value = 0.0;
+      coef.ci_low = 0.0;
+      coef.identified = false;
+      coef.note = !sufficient
+                      ? strf("joint fit with %s: dominates the model at %d taus (needs %d); "
+                               "ci_high is an upper limit",
+                               with.c_str(), dom, options.min_dominant_taus)
+                      : "joint fit with " + with + ": zero is inside its profile interval; "
+                        "ci_high is the upper limit";
+    }
+    if (!bounded) coef.note += "; not bounded from above by the data";
+  }
+  // Residuals, dominance and diagnostics of the joint model.
+  for (std::size_t i = 0; i < k && i < result.residuals.size(); ++i) {
+    auto& r = result.residuals[i];
+    const auto ii = static_cast<Eigen::Index>(i);
+    r.avar_model = model_at(c.fit.theta, c.fit.p, curve.tau_s[i], 0, kCols - 1);
+    r.sd_model = std::sqrt(std::max(0.0, c.sigma(ii, ii)));
+    r.normalized = r.sd_model > 0 ? (r.avar - r.avar_model) / r.sd_model : 0.0;
+    int best = -1;
+    double best_v = 0.0;
+    for (int col = 0; col < kCols; ++col) {
+      const double v = c.fit.theta(col) > 0 ? c.fit.theta(col) * column(col, curve.tau_s[i], c.fit.p) : 0.0;
+      if (v > best_v) {
+        best_v = v;
+        best = col;
+      }
+    }
+    r.dominant_term = best;
+  }
+  auto& s = result.summary;
+  s.chi2 = c.fit.rss;
+  const std::size_t params = c.fit.set.size() + c.extras.size();
+  s.dof = k > params ? k - params : 0;
+  s.chi2_dof = s.dof > 0 ? s.chi2 / static_cast<double>(s.dof) : 0.0;
+  s.message += "; with " + with + " (variable projection, generalised least squares; intervals "
+               "by profile likelihood)";
+  s.warnings.erase(std::remove_if(s.warnings.begin(), s.warnings.end(),
+                                  [](const std::string& w) { return w.rfind("chi2/dof", 0) == 0; }),
+                   s.warnings.end());
+  const double n = coefs.random_walk.value, kk = coefs.rate_random_walk.value;
+  result.tau_opt_s = n > 0 && kk > 0 ? std::sqrt(3.0) * n / kk : 0.0;
+  result.avar_min_eq2 = n > 0 && kk > 0 ? 2.0 * n * kk / std::sqrt(3.0) : 0.0;
+}
+
+}  // namespace detail
+}  // namespace imunoise::fit
