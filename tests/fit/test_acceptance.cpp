@@ -118,16 +118,18 @@ TEST(FitAcceptance, Tg100Gyro1SixHours) {
     }
   }
   std::printf("wls: Q or R identified in %d of %d runs\n", q_or_r_identified, runs);
+  // K^2 (the fitted variance coefficient) beside K: the square root of an unbiased but
+  // widely scattered theta_K is biased low (Jensen), which is most of K's mean error.
+  double k2_err = 0, k2_se = 0;
   {
-    // K^2 (the fitted variance coefficient) beside K: the square root of an unbiased but
-    // widely scattered theta_K is biased low (Jensen), which is most of K's mean error.
     const auto& e = stats[0].est[fit::kK];
     double mean = 0, sq = 0;
     for (double v : e) mean += v * v / (kK * kK);
     mean /= static_cast<double>(e.size());
     for (double v : e) sq += (v * v / (kK * kK) - mean) * (v * v / (kK * kK) - mean);
-    const double se = std::sqrt(sq / static_cast<double>(e.size() - 1) / static_cast<double>(e.size()));
-    std::printf("wls: K^2 mean error %+.2f%% (standard error %.2f%%)\n", 100 * (mean - 1), 100 * se);
+    k2_se = std::sqrt(sq / static_cast<double>(e.size() - 1) / static_cast<double>(e.size()));
+    k2_err = mean - 1.0;
+    std::printf("wls: K^2 mean error %+.2f%% (standard error %.2f%%)\n", 100 * k2_err, 100 * k2_se);
   }
 
   // Assertions on the default method (the issue's acceptance criteria; docs/fit.md has the
@@ -138,6 +140,7 @@ TEST(FitAcceptance, Tg100Gyro1SixHours) {
   EXPECT_LT(std::abs(n.mean_err), 0.01);
   EXPECT_LT(std::abs(b.mean_err), 0.05);
   EXPECT_LT(std::abs(k.mean_err), 2.5 * k.se);
+  EXPECT_LT(std::abs(k2_err), 2.5 * k2_se);
   // The plain weighted fit scatters K by ~60% (issue, measured): beat it.
   EXPECT_LT(k.rmse, 0.60);
   for (const auto& s : {n, b}) {
