@@ -22,10 +22,13 @@ nlohmann::json coefficient_json(const Coefficient& c, double to_unit, const std:
   return j;
 }
 
-nlohmann::json test_json(const ExtraTermTest& t) {
+nlohmann::json test_json(const ExtraTermTest& t, const FitSummary& summary) {
+  // Not tested at all when the power-law fit itself stopped early.
+  const std::string verdict =
+      t.verdict.empty() ? "not tested: " + summary.message : t.verdict;
   nlohmann::json j{{"selected", t.selected}, {"delta_chi2", number(t.delta_chi2)},
                    {"bic_penalty", number(t.penalty)}, {"dominant_taus", t.dominant_taus},
-                   {"verdict", t.verdict}};
+                   {"verdict", verdict}};
   if (t.tau_max_s > 0) j["dominates_tau_s"] = {t.tau_min_s, t.tau_max_s};
   return j;
 }
@@ -46,7 +49,7 @@ void add_extra_terms(const RecordInfo& record, const FitOptions& options, const 
     return j;
   };
   if (options.gauss_markov) {
-    nlohmann::json gm{{"fitted", true}, {"test", test_json(r.extras.gauss_markov)}};
+    nlohmann::json gm{{"fitted", true}, {"test", test_json(r.extras.gauss_markov, r.summary)}};
     if (r.coefficients.gauss_markov) {
       gm["sigma"] = rate_json(r.coefficients.gauss_markov->sigma);
       gm["correlation_time_s"] = coefficient_json(r.coefficients.gauss_markov->correlation_time_s, 1.0, "s");
@@ -54,7 +57,7 @@ void add_extra_terms(const RecordInfo& record, const FitOptions& options, const 
     terms["GM"] = std::move(gm);
   }
   if (options.sinusoid) {
-    nlohmann::json sin{{"fitted", true}, {"test", test_json(r.extras.sinusoid)}};
+    nlohmann::json sin{{"fitted", true}, {"test", test_json(r.extras.sinusoid, r.summary)}};
     if (r.coefficients.sinusoid) {
       sin["amplitude"] = rate_json(r.coefficients.sinusoid->amplitude);
       sin["frequency_hz"] = coefficient_json(r.coefficients.sinusoid->frequency_hz, 1.0, "Hz");
