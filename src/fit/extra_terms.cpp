@@ -536,24 +536,27 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
   // Forward selection: each term alone against the power-law model, the stronger first, then
   // the other on top of it.
   std::vector<Candidate> singles;
-  ExtraTermTest tests[kCols];
+  ExtraTermTest single_tests[kCols], tests[kCols];
   for (int e : requested) {
     singles.push_back(fitter.evaluate({e}));
-    describe(fitter, singles.back(), e, penalty, options.min_dominant_taus, &tests[e]);
+    describe(fitter, singles.back(), e, penalty, options.min_dominant_taus, &single_tests[e]);
+    tests[e] = single_tests[e];
   }
-  int first = -1;
-  double first_delta = 0.0;
+  auto single_of = [&](int e) -> const Candidate* {
+    for (std::size_t i = 0; i < requested.size(); ++i) {
+      if (requested[i] == e) return &singles[i];
+    }
+    return nullptr;
+  };
   const Candidate* chosen = nullptr;
-  for (std::size_t i = 0; i < requested.size(); ++i) {
-    const int e = requested[i];
-    if (passes(tests[e]) && singles[i].delta[e] > first_delta) {
-      first = e;
-      first_delta = singles[i].delta[e];
-      chosen = &singles[i];
+  for (int e : requested) {
+    if (passes(single_tests[e]) && (chosen == nullptr || single_of(e)->delta[e] > chosen->delta[chosen->extras[0]])) {
+      chosen = single_of(e);
     }
   }
   Candidate both;
-  if (first >= 0 && requested.size() == 2) {
+  if (chosen != nullptr && requested.size() == 2) {
+    const int first = chosen->extras[0];
     const int other = first == kGM ? kSIN : kGM;
     both = fitter.evaluate({first, other});
     ExtraTermTest t_other, t_first;
@@ -566,6 +569,43 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
     }
   }
 
+  // A kept term must also be determined by the data: zero outside its variance's interval and
+  // its T_c / f0 bounded on both sides (a term whose shape parameter runs off the searched
+  // range is a white, random-walk or drift-like bump the power-law terms already describe).
+  // A term failing this is dropped and the selection falls back to the other alone.
+  std::string failed_why[kCols];
+  for (int attempt = 0; attempt < 2 && chosen != nullptr; ++attempt) {
+    int failed = -1;
+    for (int e : chosen->extras) {
+      double lo = 0, hi = 0, p_lo = 0, p_hi = 0;
+      bool bounded = true, b_lo = true, b_hi = true;
+      fitter.linear_interval(*chosen, e, q, &lo, &hi, &bounded);
+      if (!(lo > 0.0)) {
+        failed_why[e] = "not identified: zero is inside its profile interval";
+      } else {
+        fitter.nonlinear_interval(*chosen, e, q, &p_lo, &p_hi, &b_lo, &b_hi);
+        if (!(b_lo && b_hi)) {
+          failed_why[e] = strf("not identified: its %s is not bounded by the data (the profile "
+                               "interval reaches the end of the searched range %.4g .. %.4g %s)",
+                               e == kGM ? "correlation time" : "frequency",
+                               fitter.grids().of(e).front(), fitter.grids().of(e).back(),
+                               e == kGM ? "s" : "Hz");
+        }
+      }
+      if (!failed_why[e].empty()) {
+        failed = e;
+        break;
+      }
+    }
+    if (failed < 0) break;
+    const Candidate* fallback = nullptr;
+    for (int e : chosen->extras) {
+      if (e != failed && failed_why[e].empty() && passes(single_tests[e])) fallback = single_of(e);
+    }
+    if (fallback != nullptr) tests[fallback->extras[0]] = single_tests[fallback->extras[0]];
+    chosen = fallback;
+  }
+
   // Coefficients of each requested term.
   for (std::size_t i = 0; i < requested.size(); ++i) {
     const int e = requested[i];
@@ -575,39 +615,31 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
     ExtraTermTest& t = e == kGM ? result.extras.gauss_markov : result.extras.sinusoid;
     t = tests[e];
     t.selected = kept;
+    if (!kept && !failed_why[e].empty()) t.verdict = failed_why[e];
     double lo = 0, hi = 0;
     bool bounded = true;
     fitter.linear_interval(c, e, q, &lo, &hi, &bounded);
     Coefficient amp, par;
     amp.ci_high = std::sqrt(hi);
-    par.note = amp.note = t.verdict;
-    if (!bounded) amp.note += "; the data do not bound it from above (ci_high is the last value tried)";
-    if (kept && lo > 0.0) {
+    if (kept) {
       amp.value = std::sqrt(c.fit.theta(e));
       amp.ci_low = std::sqrt(lo);
       amp.identified = true;
-      amp.note.clear();
       double p_lo = 0, p_hi = 0;
       bool b_lo = true, b_hi = true;
       fitter.nonlinear_interval(c, e, q, &p_lo, &p_hi, &b_lo, &b_hi);
       par.value = c.fit.p.of(e);
       par.ci_low = p_lo;
       par.ci_high = p_hi;
-      par.identified = b_lo && b_hi;
-      par.note.clear();
-      if (!par.identified) {
-        par.note = strf("the profile interval reaches the end of the searched range "
-                          "(%.4g .. %.4g): its %s bound is open",
-                          fitter.grids().of(e).front(), fitter.grids().of(e).back(),
-                          b_lo ? "upper" : "lower");
-      }
+      par.identified = true;
     } else {
-      if (kept) t.verdict = "not identified: zero is inside its profile interval";
       t.selected = false;
       amp.ci_low = 0.0;
+      amp.note = t.verdict;
+      if (!bounded) amp.note += "; the data do not bound it from above (ci_high is the last value tried)";
       par.ci_low = par.ci_high = std::numeric_limits<double>::quiet_NaN();
       // The best trial value, for the record (what the fit would have said).
-      par.note += strf("; best trial value %.4g", c.fit.p.of(e));
+      par.note = t.verdict + strf("; best trial value %.4g", c.fit.p.of(e));
     }
     if (e == kGM) coefs.gauss_markov = GaussMarkovTerm{amp, par};
     else coefs.sinusoid = SinusoidTerm{amp, par};

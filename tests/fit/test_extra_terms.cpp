@@ -139,6 +139,36 @@ TEST(FitExtraTerms, ExactCurveWithSinusoidIsRecovered) {
   EXPECT_NEAR(r.coefficients.random_walk.value / kN, 1.0, 1e-3);
 }
 
+TEST(FitExtraTerms, ShortWhiteNoiseRecordsRarelyKeepAnOptionalTerm) {
+  // 20 s of white rate noise (11 octave taus, the last ones with a few degrees of freedom):
+  // a bump at the end of the curve must not become a sinusoid or Gauss-Markov term. Bound:
+  // the chi-squared(2) tail at the BIC price (1/k = 9.1% for k = 11 taus) per term, plus the
+  // binomial 99% band for 40 records.
+  sim::NoiseModel white;
+  white.n_unit_sqrt_s = kN;
+  fit::FitOptions o;
+  o.terms[fit::kK] = false;
+  o.gauss_markov = true;
+  o.sinusoid = true;
+  int kept_gm = 0, kept_sin = 0;
+  const int records = 40;
+  for (int seed = 1; seed <= records; ++seed) {
+    const auto rate = sim::simulate(white, kRateHz, 4000, static_cast<std::uint64_t>(seed));
+    const auto r = fit::fit_record(phase_from_rate(rate, kTau0, 0.0), kTau0, o);
+    kept_gm += r.extras.gauss_markov.selected;
+    kept_sin += r.extras.sinusoid.selected;
+    if (r.extras.sinusoid.selected) {
+      EXPECT_TRUE(r.coefficients.sinusoid->frequency_hz.identified);
+    }
+  }
+  std::printf("20 s white noise, %d records: Gauss-Markov kept %d, sinusoid kept %d\n", records,
+              kept_gm, kept_sin);
+  const double p = 1.0 / 11.0;
+  const double bound = p + 2.576 * std::sqrt(p * (1 - p) / records);
+  EXPECT_LE(kept_gm / static_cast<double>(records), bound);
+  EXPECT_LE(kept_sin / static_cast<double>(records), bound);
+}
+
 TEST(FitExtraTerms, OnlyTheWlsMethodFitsThem) {
   fit::FitOptions o;
   o.gauss_markov = true;
