@@ -291,22 +291,27 @@ Matrix model_covariance(const CovarianceBasis& basis, const CurveView& curve,
   return s;
 }
 
+/// The column contributing most to the model at tau_s (-1: none).
+int dominant_column(const Vector& theta, const Params& p, double tau_s) {
+  int best = -1;
+  double best_v = 0.0;
+  for (int c = 0; c < kCols; ++c) {
+    const double v = theta(c) > 0.0 ? theta(c) * column(c, tau_s, p) : 0.0;
+    if (v > best_v) {
+      best_v = v;
+      best = c;
+    }
+  }
+  return best;
+}
+
 /// Taus at which column e is the largest part of the model, and their range.
 int dominance(const CurveView& curve, const Vector& theta, const Params& p, int e,
               double* tau_min_s, double* tau_max_s) {
   int count = 0;
   *tau_min_s = *tau_max_s = 0.0;
   for (double tau : curve.tau_s) {
-    int best = -1;
-    double best_v = 0.0;
-    for (int c = 0; c < kCols; ++c) {
-      const double v = theta(c) > 0.0 ? theta(c) * column(c, tau, p) : 0.0;
-      if (v > best_v) {
-        best_v = v;
-        best = c;
-      }
-    }
-    if (best == e) {
+    if (dominant_column(theta, p, tau) == e) {
       ++count;
       if (*tau_min_s == 0.0) *tau_min_s = tau;
       *tau_max_s = tau;
@@ -498,8 +503,6 @@ void describe(const ExtraFitter& f, const Candidate& c, int e, double penalty, i
   }
 }
 
-bool passes(const ExtraTermTest& t) { return t.selected; }
-
 }  // namespace
 
 void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
@@ -550,7 +553,7 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
   };
   const Candidate* chosen = nullptr;
   for (int e : requested) {
-    if (passes(single_tests[e]) && (chosen == nullptr || single_of(e)->delta[e] > chosen->delta[chosen->extras[0]])) {
+    if (single_tests[e].selected && (chosen == nullptr || single_of(e)->delta[e] > chosen->delta[chosen->extras[0]])) {
       chosen = single_of(e);
     }
   }
@@ -562,7 +565,7 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
     ExtraTermTest t_other, t_first;
     describe(fitter, both, other, penalty, options.min_dominant_taus, &t_other);
     describe(fitter, both, first, penalty, options.min_dominant_taus, &t_first);
-    if (passes(t_other) && passes(t_first)) {
+    if (t_other.selected && t_first.selected) {
       chosen = &both;
       tests[other] = t_other;
       tests[first] = t_first;
@@ -573,18 +576,22 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
   // its T_c / f0 bounded on both sides (a term whose shape parameter runs off the searched
   // range is a white, random-walk or drift-like bump the power-law terms already describe).
   // A term failing this is dropped and the selection falls back to the other alone.
+  // The intervals of the finally chosen candidate's terms are the ones reported below.
   std::string failed_why[kCols];
+  struct Intervals {
+    double lo = 0, hi = 0, p_lo = 0, p_hi = 0;
+    bool bounded = true, b_lo = true, b_hi = true;
+  } checked[kCols];
   for (int attempt = 0; attempt < 2 && chosen != nullptr; ++attempt) {
     int failed = -1;
     for (int e : chosen->extras) {
-      double lo = 0, hi = 0, p_lo = 0, p_hi = 0;
-      bool bounded = true, b_lo = true, b_hi = true;
-      fitter.linear_interval(*chosen, e, q, &lo, &hi, &bounded);
-      if (!(lo > 0.0)) {
+      Intervals& iv = checked[e];
+      fitter.linear_interval(*chosen, e, q, &iv.lo, &iv.hi, &iv.bounded);
+      if (!(iv.lo > 0.0)) {
         failed_why[e] = "not identified: zero is inside its profile interval";
       } else {
-        fitter.nonlinear_interval(*chosen, e, q, &p_lo, &p_hi, &b_lo, &b_hi);
-        if (!(b_lo && b_hi)) {
+        fitter.nonlinear_interval(*chosen, e, q, &iv.p_lo, &iv.p_hi, &iv.b_lo, &iv.b_hi);
+        if (!(iv.b_lo && iv.b_hi)) {
           failed_why[e] = strf("not identified: its %s is not bounded by the data (the profile "
                                "interval reaches the end of the searched range %.4g .. %.4g %s)",
                                e == kGM ? "correlation time" : "frequency",
@@ -600,7 +607,7 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
     if (failed < 0) break;
     const Candidate* fallback = nullptr;
     for (int e : chosen->extras) {
-      if (e != failed && failed_why[e].empty() && passes(single_tests[e])) fallback = single_of(e);
+      if (e != failed && failed_why[e].empty() && single_tests[e].selected) fallback = single_of(e);
     }
     if (fallback != nullptr) tests[fallback->extras[0]] = single_tests[fallback->extras[0]];
     chosen = fallback;
@@ -616,27 +623,23 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
     t = tests[e];
     t.selected = kept;
     if (!kept && !failed_why[e].empty()) t.verdict = failed_why[e];
-    double lo = 0, hi = 0;
-    bool bounded = true;
-    fitter.linear_interval(c, e, q, &lo, &hi, &bounded);
+    Intervals iv = checked[e];  // computed on `chosen` when kept
+    if (!kept) fitter.linear_interval(c, e, q, &iv.lo, &iv.hi, &iv.bounded);
     Coefficient amp, par;
-    amp.ci_high = std::sqrt(hi);
+    amp.ci_high = std::sqrt(iv.hi);
     if (kept) {
       amp.value = std::sqrt(c.fit.theta(e));
-      amp.ci_low = std::sqrt(lo);
+      amp.ci_low = std::sqrt(iv.lo);
       amp.identified = true;
-      double p_lo = 0, p_hi = 0;
-      bool b_lo = true, b_hi = true;
-      fitter.nonlinear_interval(c, e, q, &p_lo, &p_hi, &b_lo, &b_hi);
       par.value = c.fit.p.of(e);
-      par.ci_low = p_lo;
-      par.ci_high = p_hi;
+      par.ci_low = iv.p_lo;
+      par.ci_high = iv.p_hi;
       par.identified = true;
     } else {
       t.selected = false;
       amp.ci_low = 0.0;
       amp.note = t.verdict;
-      if (!bounded) amp.note += "; the data do not bound it from above (ci_high is the last value tried)";
+      if (!iv.bounded) amp.note += "; the data do not bound it from above (ci_high is the last value tried)";
       par.ci_low = par.ci_high = std::numeric_limits<double>::quiet_NaN();
       // The best trial value, for the record (what the fit would have said).
       par.note = t.verdict + strf("; best trial value %.4g", c.fit.p.of(e));
@@ -694,16 +697,7 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
     r.avar_model = model_at(c.fit.theta, c.fit.p, curve.tau_s[i], 0, kCols - 1);
     r.sd_model = std::sqrt(std::max(0.0, c.sigma(ii, ii)));
     r.normalized = r.sd_model > 0 ? (r.avar - r.avar_model) / r.sd_model : 0.0;
-    int best = -1;
-    double best_v = 0.0;
-    for (int col = 0; col < kCols; ++col) {
-      const double v = c.fit.theta(col) > 0 ? c.fit.theta(col) * column(col, curve.tau_s[i], c.fit.p) : 0.0;
-      if (v > best_v) {
-        best_v = v;
-        best = col;
-      }
-    }
-    r.dominant_term = best;
+    r.dominant_term = dominant_column(c.fit.theta, c.fit.p, curve.tau_s[i]);
   }
   auto& s = result.summary;
   s.chi2 = c.fit.rss;
