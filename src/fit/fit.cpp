@@ -214,7 +214,10 @@ bool FitOptions::IsValid(std::string* error) const {
   if (!(parameter_tolerance > 0.0)) return fail("parameter_tolerance must be > 0");
   bool any = false;
   for (bool t : terms) any = any || t;
-  if (!any) return fail("at least one term must be fitted");
+  if (!any) {
+    return fail("at least one of the power-law terms Q, N, B, K, R must be fitted (GM and SIN "
+                "are tested on top of them)");
+  }
   if ((gauss_markov || sinusoid) && method != Method::wls) {
     return fail("the Gauss-Markov and sinusoid terms are fitted by the wls method only");
   }

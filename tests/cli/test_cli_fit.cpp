@@ -93,6 +93,10 @@ TEST(CliFit, OptionalGaussMarkovAndSinusoidTerms) {
   const auto o = run_cli({"fit", file, "--units", "deg/s", "--terms", "N,GM", "--method", "ols"});
   EXPECT_EQ(o.exit_code, 1);
   EXPECT_NE(o.err.find("wls"), std::string::npos) << o.err;
+  const auto alone = run_cli({"fit", file, "--units", "deg/s", "--terms", "GM"});
+  EXPECT_EQ(alone.exit_code, 1);
+  EXPECT_NE(alone.err.find("power-law terms"), std::string::npos) << alone.err;
+  EXPECT_TRUE(alone.out.empty());
 }
 
 TEST(CliFit, BadInputGivesClearMessages) {
