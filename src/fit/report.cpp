@@ -14,6 +14,12 @@ nlohmann::json number(double v) {
 // Eqs. 1-2 exist only with both N and K: 0 from the fit means "not available".
 nlohmann::json positive(double v) { return v > 0.0 ? number(v) : nlohmann::json(nullptr); }
 
+/// {value, unit, ci_low, ci_high} of c in a customary gyro unit.
+nlohmann::json customary_json(const Coefficient& c, const CustomaryUnit& cu) {
+  return {{"value", number(c.value / cu.to_si)}, {"unit", cu.name},
+          {"ci_low", number(c.ci_low / cu.to_si)}, {"ci_high", number(c.ci_high / cu.to_si)}};
+}
+
 nlohmann::json coefficient_json(const Coefficient& c, double to_unit, const std::string& unit) {
   nlohmann::json j{{"value", number(c.value / to_unit)}, {"unit", unit},
                    {"ci_low", number(c.ci_low / to_unit)}, {"ci_high", number(c.ci_high / to_unit)},
@@ -41,10 +47,7 @@ void add_extra_terms(const RecordInfo& record, const FitOptions& options, const 
   auto rate_json = [&](const Coefficient& c) {
     nlohmann::json j = coefficient_json(c, f, record.unit_label);
     if (record.gyro) {
-      const auto& cu = customary_gyro_B;  // a rate: deg/h
-      j["customary"] = {{"value", number(c.value / cu.to_si)}, {"unit", cu.name},
-                        {"ci_low", number(c.ci_low / cu.to_si)},
-                        {"ci_high", number(c.ci_high / cu.to_si)}};
+      j["customary"] = customary_json(c, customary_gyro_B);  // a rate: deg/h
     }
     return j;
   };
@@ -132,10 +135,7 @@ nlohmann::json report_json(const RecordInfo& record, const FitOptions& options,
       t["dominates_tau_s"] = {r.terms[j].tau_min_s, r.terms[j].tau_max_s};
     }
     if (record.gyro) {
-      const auto& cu = customary_unit(j);
-      t["customary"] = {{"value", number(c.value / cu.to_si)}, {"unit", cu.name},
-                        {"ci_low", number(c.ci_low / cu.to_si)},
-                        {"ci_high", number(c.ci_high / cu.to_si)}};
+      t["customary"] = customary_json(c, customary_unit(j));
     }
     terms[term_name(j)] = std::move(t);
   }
