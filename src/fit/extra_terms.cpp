@@ -709,6 +709,12 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
   s.warnings.erase(std::remove_if(s.warnings.begin(), s.warnings.end(),
                                   [](const std::string& w) { return w.rfind("chi2/dof", 0) == 0; }),
                    s.warnings.end());
+  if (s.dof > 0 && s.chi2_dof > 4.0) {
+    s.warnings.push_back(strf("chi2/dof = %.3g: the model with %s does not describe the curve "
+                              "well (another term, drift, or non-stationary data?); intervals are "
+                              "too narrow",
+                              s.chi2_dof, with.c_str()));
+  }
   const double n = coefs.random_walk.value, kk = coefs.rate_random_walk.value;
   result.tau_opt_s = n > 0 && kk > 0 ? std::sqrt(3.0) * n / kk : 0.0;
   result.avar_min_eq2 = n > 0 && kk > 0 ? 2.0 * n * kk / std::sqrt(3.0) : 0.0;

@@ -103,6 +103,23 @@ TEST(FitExtraTerms, ExactCurveWithGaussMarkovIsRecovered) {
   EXPECT_STREQ(fit::term_name(fit::kGM), "GM");
 }
 
+TEST(FitExtraTerms, KeptTermWithAPoorFitStillWarns) {
+  // The exact Gauss-Markov curve with its last three taus tripled (a drift the model lacks):
+  // the term is kept, and chi^2/dof of the joint model (far above 4 on exact data) is reported.
+  auto pts = exact_curve(octaves(kPhase6h), Extra{1.5e-3, 2.0, 0, 0});
+  for (std::size_t i = pts.size() - 3; i < pts.size(); ++i) pts[i].dev *= 3.0;
+  fit::FitOptions o;
+  o.gauss_markov = true;
+  const auto r = fit::fit_allan(pts, kPhase6h, kTau0, o);
+  ASSERT_TRUE(r.extras.gauss_markov.selected) << r.extras.gauss_markov.verdict;
+  EXPECT_GT(r.summary.chi2_dof, 4.0);
+  bool warned = false;
+  for (const auto& w : r.summary.warnings) {
+    warned = warned || (w.rfind("chi2/dof", 0) == 0 && w.find("Gauss-Markov") != std::string::npos);
+  }
+  EXPECT_TRUE(warned);
+}
+
 TEST(FitExtraTerms, ExactPowerLawCurveKeepsNoOptionalTerm) {
   const auto pts = exact_curve(octaves(kPhase6h), {});
   fit::FitOptions plain;
