@@ -1,6 +1,7 @@
 #include "imunoise/nav/report.hpp"
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <numbers>
 #include <sstream>
@@ -52,6 +53,14 @@ const nlohmann::json& field(const nlohmann::json& j, const char* name, const std
                      "'; make one with `imunoise fit FILE --rate HZ --units deg/s --format json -o FIT.json`");
   }
   return j.at(name);
+}
+
+// Standard errors of the Monte-Carlo latitude and longitude RMS (rad), from the path/east ones.
+double st_lat_se(const ModelSeries& s, std::size_t i) {
+  return s.north_m[i] > 0 ? s.montecarlo->se_rms_north_m[i] * s.lat_rad[i] / s.north_m[i] : 0.0;
+}
+double st_lon_se(const ModelSeries& s, std::size_t i, const NavOptions&) {
+  return s.east_m[i] > 0 && !s.lon_rad.empty() ? s.montecarlo->se_rms_east_m[i] * s.lon_rad[i] / s.east_m[i] : 0.0;
 }
 
 }  // namespace
@@ -123,6 +132,124 @@ nlohmann::json report_json(const NavResult& r) {
     doc["distance_travelled_m"] = d;
   }
   return doc;
+}
+
+namespace {
+
+std::string num(double v, const char* format = "%.6g") {
+  if (!std::isfinite(v)) return "";
+  char b[64];
+  std::snprintf(b, sizeof b, format, v);
+  return b;
+}
+
+std::string pad(const std::string& s, std::size_t width) {
+  return s.size() >= width ? s : std::string(width - s.size(), ' ') + s;
+}
+
+}  // namespace
+
+std::string report_csv(const NavResult& r) {
+  std::string out = "# imunoise nav: RMS navigation error; t in s, lat/lon in deg, path/east/radial in m\n";
+  out += "t_s";
+  for (const ModelSeries& s : r.models) {
+    const std::string m = model_name(s.model);
+    out += "," + m + "_lat_deg," + m + "_lon_deg," + m + "_path_m," + m + "_east_m," + m + "_radial_m";
+    if (s.montecarlo) out += "," + m + "_path_se_m," + m + "_radial_se_m";
+  }
+  out += "\n";
+  for (std::size_t i = 0; i < r.t_s.size(); ++i) {
+    out += num(r.t_s[i], "%.10g");
+    for (const ModelSeries& s : r.models) {
+      auto cell = [&out](const std::string& text) {
+        out += ',';
+        out += text;
+      };
+      cell(num(s.lat_rad[i] * kDeg, "%.9g"));
+      cell(r.longitude_defined ? num(s.lon_rad[i] * kDeg, "%.9g") : std::string());
+      cell(num(s.north_m[i], "%.9g"));
+      cell(num(s.east_m[i], "%.9g"));
+      cell(num(s.radial_m[i], "%.9g"));
+      if (s.montecarlo) {
+        cell(num(s.montecarlo->se_rms_north_m[i], "%.4g"));
+        cell(num(s.montecarlo->se_rms_radial_m[i], "%.4g"));
+      }
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+std::string report_table(const NavResult& r) {
+  const NavOptions& o = r.options;
+  std::size_t i = r.t_s.size() - 1;
+  for (std::size_t k = 0; k < r.t_s.size(); ++k) {
+    if (std::abs(r.t_s[k] - 3600.0) < 1e-6) i = k;
+  }
+  const double t = r.t_s[i];
+  bool paper_asked = false;
+  for (const auto& s : r.models) paper_asked = paper_asked || s.model == Model::paper;
+  const bool published = paper_asked && std::abs(t - 3600.0) < 1e-6;
+  std::string out = "# imunoise nav: RMS navigation error at t = " + num(t) + " s (" + num(t / 3600.0) +
+                    " h), latitude " + num(o.latitude_rad * kDeg) + " deg, Earth rate " +
+                    (o.earth_rate ? "on" : "off") + "\n";
+  for (int a = 0; a < 3; ++a) {
+    const GyroTerms& g = r.terms[static_cast<std::size_t>(a)];
+    const char* names[] = {"x (north)", "y (east)", "z (down)"};
+    out += std::string("# gyro ") + names[a] + ": N " + num(g.n_rad_sqrt_s * kDeg) + " deg/sqrt(s), B " +
+           num(g.b_rad_s * kDeg) + " deg/s, K " + num(g.k_rad_s_sqrt_s * kDeg) + " deg/s/sqrt(s), Q " +
+           num(g.q_rad * kDeg) + " deg, R " + num(g.r_rad_s2 * kDeg) + " deg/s^2, bias " +
+           num(g.bias_rad_s * kDeg) + " deg/s";
+    if (g.gm_sigma_rad_s > 0) out += ", GM " + num(g.gm_sigma_rad_s * kDeg) + " deg/s, " + num(g.gm_time_s) + " s";
+    out += "\n";
+  }
+  for (const auto& n : r.notes) out += "# note: " + n + "\n";
+  constexpr std::size_t w = 22;
+  out += pad("quantity", 18);
+  for (const auto& s : r.models) out += pad(model_name(s.model), w);
+  if (published) out += pad("paper (published)", w);
+  out += "\n";
+  struct Row {
+    const char* name;
+    double scale;
+    int which;  // 0 lat, 1 lon, 2 path, 3 east, 4 radial
+  };
+  const Row rows[] = {{"latitude [deg]", kDeg, 0}, {"longitude [deg]", kDeg, 1}, {"path [km]", 1e-3, 2},
+                      {"east [km]", 1e-3, 3}, {"radial [km]", 1e-3, 4}};
+  const PaperPublished pub;
+  for (const Row& row : rows) {
+    if (row.which == 1 && !r.longitude_defined) {
+      out += pad(row.name, 18) + "  undefined at the pole\n";
+      continue;
+    }
+    out += pad(row.name, 18);
+    for (const auto& s : r.models) {
+      const std::vector<double>* v[] = {&s.lat_rad, &s.lon_rad, &s.north_m, &s.east_m, &s.radial_m};
+      std::string cell = num((*v[row.which])[i] * row.scale, "%.5g");
+      if (s.montecarlo && row.which >= 2) {
+        const auto& st = *s.montecarlo;
+        const double se = row.which == 2 ? st.se_rms_north_m[i] : row.which == 3 ? st.se_rms_east_m[i] : st.se_rms_radial_m[i];
+        cell += " +- " + num(se * row.scale, "%.2g");
+      } else if (s.montecarlo) {
+        const double se = row.which == 0 ? st_lat_se(s, i) : st_lon_se(s, i, o);
+        cell += " +- " + num(se * row.scale, "%.2g");
+      }
+      out += pad(cell, w);
+    }
+    if (published) {
+      const double p[] = {pub.lat_deg, pub.lon_deg, pub.path_m * 1e-3};
+      out += row.which <= 2 ? pad(num(p[row.which], "%.5g"), w) : pad("-", w);
+    }
+    out += "\n";
+  }
+  for (const auto& s : r.models) {
+    out += std::string("# ") + model_name(s.model) + ": " + s.assumptions + "\n";
+    if (s.model == Model::paper) out += "#   sigma_eps = " + num(s.paper_sigma_eps_rad_s * kDeg) + " deg/s\n";
+  }
+  if (o.velocity_m_s > 0.0 && t > 0.0) {
+    out += "# distance travelled at " + num(o.velocity_m_s) + " m/s: " + num(o.velocity_m_s * t * 1e-3) + " km\n";
+  }
+  return out;
 }
 
 GyroAxisNoise axis_from_fit_json(const nlohmann::json& doc, const std::string& source) {

@@ -25,6 +25,17 @@ namespace imunoise::nav {
 /// The JSON document of a result.
 nlohmann::json report_json(const NavResult& result);
 
+/// Figure-ready CSV: one row per reported time, `t_s` then, per model, `<model>_lat_deg`,
+/// `<model>_lon_deg` (empty at the pole), `<model>_path_m`, `<model>_east_m`, `<model>_radial_m`
+/// and for montecarlo also `montecarlo_path_se_m`, `montecarlo_radial_se_m`. A header comment
+/// line names the units.
+std::string report_csv(const NavResult& result);
+
+/// Plain-text table of the 1-hour values (or the final ones when the run is shorter or 1 h is
+/// not a reported time) of every model side by side, with the paper's published figures when
+/// the paper model was asked and the time is 1 h; notes and assumptions as # lines.
+std::string report_table(const NavResult& result);
+
 /// The noise of one gyro axis from the document `imunoise fit --format json` writes: the
 /// terms Q N B K R (values in the document's unit, converted to SI; a term with
 /// "identified": false is absent) and, when present and identified, GM. InputError naming
