@@ -9,5 +9,6 @@ void setup_dev(CLI::App& app);
 void setup_simulate(CLI::App& app);
 void setup_fit(CLI::App& app);
 void setup_nav(CLI::App& app);
+void setup_redundant(CLI::App& app);
 
 }  // namespace imunoise::cli

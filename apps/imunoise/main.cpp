@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   imunoise::cli::setup_simulate(app);
   imunoise::cli::setup_fit(app);
   imunoise::cli::setup_nav(app);
+  imunoise::cli::setup_redundant(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
