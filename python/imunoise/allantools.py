@@ -217,9 +217,25 @@ def _terms(name, n_phase, m):
     raise AssertionError(name)
 
 
+def _finite_phase(data, rate, data_type):
+    """input_to_phase, but a NaN or infinite frequency sample (after AllanTools' trimming of
+    leading and trailing NaNs) is a ValueError naming it in the caller's array; phase samples
+    are checked by the C++ estimators."""
+    if data_type == "freq":
+        y = np.asarray(data, dtype=np.float64)
+        if y.ndim == 1 and not np.all(np.isfinite(y)):
+            lead = np.flatnonzero(~np.isnan(y))
+            start = int(lead[0]) if lead.size else 0
+            bad = np.flatnonzero(~np.isfinite(trim_data(y)))
+            if bad.size:
+                raise ValueError(f"frequency sample {start + int(bad[0])} is not finite; remove "
+                                 "or repair it (gradev skips NaN gaps in phase data)")
+    return np.asarray(input_to_phase(data, rate, data_type), dtype=np.float64)
+
+
 def _run(name, data, rate, data_type, taus, maximum_m=None, even=False, on_frequency=False):
     """tau_generator + the C++ estimator at the factors AllanTools keeps (n > 1)."""
-    phase = np.asarray(input_to_phase(data, rate, data_type), dtype=np.float64)
+    phase = _finite_phase(data, rate, data_type)
     n_phase = len(phase)
     # htotdev lays its taus out on the N-1 frequency points, the others on the N phase points.
     basis = n_phase - 1 if on_frequency else n_phase
@@ -309,7 +325,7 @@ def mtie_phase_fast(phase, rate=1.0, data_type="phase", taus=None):
     unfinished (truncates the data to 2^k points, labels taus 1, 2, 4, ... samples and prints);
     this one returns the values the algorithm is meant to (docs/allantools.md).
     """
-    x = np.asarray(input_to_phase(phase, rate, data_type), dtype=np.float64)
+    x = _finite_phase(phase, rate, data_type)
     if rate == 0:
         raise RuntimeError("Warning! rate==0")
     ms = []
@@ -330,7 +346,7 @@ def pdev(data, rate=1.0, data_type="phase", taus=None):
         PVAR = 72 / (M m^4 (m tau0)^2) sum_{i<M} [sum_{k<m} ((m-1)/2 - k)(x[i+k] - x[i+k+m])]^2
     The inner weighted sums come from prefix sums (O(N) per m, extended precision).
     """
-    phase = np.asarray(input_to_phase(data, rate, data_type), dtype=np.float64)
+    phase = _finite_phase(data, rate, data_type)
     _, ms, taus_used = tau_generator(phase, rate, taus)
     n_phase = len(phase)
     devs = np.zeros(len(ms))

@@ -176,3 +176,18 @@ def test_not_provided_names_say_so():
         at.Dataset
     with pytest.raises(AttributeError):
         at.no_such_function
+
+
+def test_non_finite_frequency_sample_is_named_in_the_callers_array():
+    y = np.concatenate(([np.nan], white_phase(100)))
+    y[41] = np.inf
+    for name in ("oadev", "pdev", "theo1", "mtie_phase_fast"):
+        with pytest.raises(ValueError, match="frequency sample 41 is not finite"):
+            getattr(at, name)(y, data_type="freq")
+
+
+def test_bad_shapes_and_keywords_are_value_errors():
+    with pytest.raises(ValueError, match="1-D"):
+        at.oadev(np.zeros((20, 3)))
+    with pytest.raises(ValueError, match="octave"):
+        at.oadev(white_phase(50), taus="octaves")
