@@ -41,7 +41,7 @@ __all__ = [
     "__version__", "adev", "oadev", "mdev", "pdev", "hdev", "ohdev", "tdev", "totdev",
     "mtotdev", "ttotdev", "htotdev", "theo1", "mtie", "mtie_phase_fast", "tierms", "gradev",
     "frequency2phase", "phase2frequency", "phase2radians", "frequency2fractional",
-    "three_cornered_hat_phase", "noise", "trim_data", "edf_simple", "edf_greenhall",
+    "three_cornered_hat_phase", "gcodev", "noise", "trim_data", "edf_simple", "edf_greenhall",
     "edf_totdev", "edf_mtotdev", "confidence_interval", "confidence_interval_noiseID",
     "autocorr_noise_id", "tau_generator", "tau_reduction", "remove_small_ns", "input_to_phase",
     "ONE_SIGMA_CI", "Dataset", "Plot",
@@ -49,7 +49,7 @@ __all__ = [
 
 # AllanTools names this module does not provide (docs/allantools.md says why).
 _NOT_PROVIDED = {
-    "Noise", "gcodev", "psd2allan", "mask", "oadev_realtime",
+    "Noise", "psd2allan", "mask", "oadev_realtime",
     "ohdev_realtime", "tdev_realtime", "calc_hdev_phase", "calc_mtotdev_phase",
     "calc_htotdev_freq",
 }
@@ -406,6 +406,35 @@ def gradev(data, rate=1.0, data_type="phase", taus=None, ci=0.9, noisetype="wp")
             lo, hi = confidence_interval(dev, edf_simple(n_valid, m, alpha), ci)
             lows[idx], highs[idx] = dev - lo, hi - dev
     return remove_small_ns(taus_used, devs, [lows, highs], ns)
+
+
+def gcodev(data_1, data_2, rate=1.0, data_type="phase", taus=None):
+    """Groslambert codeviation (Allan covariance) of two synchronous records, overlapping.
+
+    sqrt(|sum of products of the two records' second differences| / (2 n)) / (m tau0),
+    n = N - 2m: an estimate of the deviation of the oscillator the two measurements share,
+    free of their uncorrelated noises. The sign of the covariance is not returned
+    (AllanTools' convention); gcodev(x, x) is oadev(x).
+    """
+    x1 = _finite_phase(data_1, rate, data_type)
+    x2 = _finite_phase(data_2, rate, data_type)
+    if len(x1) != len(x2):
+        raise ValueError(f"gcodev: the records differ in length ({len(x1)} and {len(x2)} "
+                         "points); they must be synchronous")
+    if not (np.all(np.isfinite(x1)) and np.all(np.isfinite(x2))):
+        raise ValueError("gcodev: a phase sample is not finite; remove or repair it")
+    _, ms, taus_used = tau_generator(x1, rate, taus)
+    n_phase = len(x1)
+    devs = np.zeros(len(ms))
+    ns = np.maximum(n_phase - 2 * ms, 0.0)
+    for idx, m in enumerate(ms):
+        m = int(m)
+        if ns[idx] < 1:
+            continue
+        d1 = x1[2 * m:] - 2.0 * x1[m:n_phase - m] + x1[:n_phase - 2 * m]
+        d2 = x2[2 * m:] - 2.0 * x2[m:n_phase - m] + x2[:n_phase - 2 * m]
+        devs[idx] = math.sqrt(abs(float(np.dot(d1, d2))) / (2.0 * ns[idx])) / m * rate
+    return remove_small_ns(taus_used, devs, devs / np.sqrt(np.maximum(ns, 1.0)), ns)
 
 
 def three_cornered_hat_phase(phasedata_ab, phasedata_bc, phasedata_ca, rate, taus, function):

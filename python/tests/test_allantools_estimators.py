@@ -242,3 +242,35 @@ def test_three_cornered_hat_recovers_the_only_noisy_clock():
     t2, d2, _, _ = at.oadev(a, taus="octave")
     np.testing.assert_allclose(dev_a, d2, rtol=1e-12)
     assert isinstance(err_a, list) and len(err_a) == len(t)
+
+
+# ---- gcodev --------------------------------------------------------------------------------
+
+def test_gcodev_identities():
+    x = np.cumsum(np.random.default_rng(12).standard_normal(300))
+    t, d, e, n = at.gcodev(x, x, taus="octave")
+    t2, d2, _, n2 = at.oadev(x, taus="octave")
+    np.testing.assert_array_equal(t, t2)
+    np.testing.assert_allclose(d, d2, rtol=1e-12)  # the covariance of x with itself
+    np.testing.assert_array_equal(n, n2)
+    np.testing.assert_allclose(at.gcodev(x, -x)[1], d2, rtol=1e-12)  # |covariance|
+    np.testing.assert_allclose(at.gcodev(x, 3 * x)[1], np.sqrt(3) * d2, rtol=1e-12)
+
+
+def test_gcodev_rejects_the_uncorrelated_measurement_noise():
+    # AB = B - A + a, BC = C - B + c with A, C, a, c independent: the covariance of the two
+    # second differences estimates -var(B): |.| gives B's deviation. White PM of B (sd 1) has
+    # ADEV sqrt(3)/tau; the cross terms average out as 1/sqrt(n): with the others at sd 1 and
+    # n ~ 2e5 the relative error is ~ 4/sqrt(2e5) ~ 1 %, tolerance 5 %.
+    rng = np.random.default_rng(13)
+    n = 200000
+    b = rng.standard_normal(n)
+    ab = b - rng.standard_normal(n) + rng.standard_normal(n)
+    bc = rng.standard_normal(n) - b + rng.standard_normal(n)
+    t, d, _, _ = at.gcodev(ab, bc, taus=[1, 4])
+    np.testing.assert_allclose(d, np.sqrt(3) / t, rtol=0.05)
+
+
+def test_gcodev_needs_synchronous_records():
+    with pytest.raises(ValueError, match="synchronous"):
+        at.gcodev(np.zeros(10), np.zeros(11))
