@@ -68,6 +68,8 @@ def __getattr__(name):
 def trim_data(x):
     """Leading and trailing NaNs removed (inner NaNs kept)."""
     x = np.asarray(x)
+    if x.size == 0 or (not np.isnan(x[0]) and not np.isnan(x[-1])):
+        return x  # the usual case, without a pass over the data
     finite = np.flatnonzero(~np.isnan(x))
     if finite.size == 0:
         return x[:0]
@@ -128,10 +130,15 @@ def tau_generator(data, rate, taus=None, v=False, even=False, maximum_m=-1):
     m = np.round(tau * rate), kept when 0 < m < N and m <= maximum_m (N when -1), sorted and
     unique; ``even`` keeps even m only (Theo1). rate == 0 raises RuntimeError.
     """
+    data = np.asarray(data)
+    m, taus = _factors(len(data), rate, taus, v=v, even=even, maximum_m=maximum_m)
+    return data, m, taus
+
+
+def _factors(n, rate, taus, v=False, even=False, maximum_m=-1):
+    """tau_generator's rules for n data points: (m, taus)."""
     if rate == 0:
         raise RuntimeError("Warning! rate==0")
-    data = np.asarray(data)
-    n = len(data)
     if taus is None or (isinstance(taus, list) and len(taus) == 0):
         taus = "octave"
     if isinstance(taus, str):
@@ -159,7 +166,7 @@ def tau_generator(data, rate, taus=None, v=False, even=False, maximum_m=-1):
         print("tau_generator: ", m)
     if even:
         m = m[m % 2 == 0]
-    return data, m, m / rate
+    return m, m / rate
 
 
 def tau_reduction(ms, rate, n_per_decade):
@@ -241,8 +248,7 @@ def _run(name, data, rate, data_type, taus, maximum_m=None, even=False, on_frequ
     # htotdev lays its taus out on the N-1 frequency points, the others on the N phase points.
     basis = n_phase - 1 if on_frequency else n_phase
     limit = -1 if maximum_m is None else maximum_m(basis)
-    _, ms, taus_used = tau_generator(np.empty(max(basis, 0)), rate, taus, even=even,
-                                     maximum_m=limit)
+    ms, taus_used = _factors(max(basis, 0), rate, taus, even=even, maximum_m=limit)
     ns = _terms(name, n_phase, ms)
     keep = ns > 1
     if not np.any(keep):
@@ -348,7 +354,7 @@ def pdev(data, rate=1.0, data_type="phase", taus=None):
     The inner weighted sums come from prefix sums (O(N) per m, extended precision).
     """
     phase = _finite_phase(data, rate, data_type)
-    _, ms, taus_used = tau_generator(phase, rate, taus)
+    ms, taus_used = _factors(len(phase), rate, taus)
     n_phase = len(phase)
     devs = np.zeros(len(ms))
     ns = np.where(ms == 1, n_phase - 2.0, n_phase - 2.0 * ms)
@@ -387,7 +393,7 @@ def gradev(data, rate=1.0, data_type="phase", taus=None, ci=0.9, noisetype="wp")
     (anything else: N - 1 degrees of freedom).
     """
     x = np.asarray(input_to_phase(data, rate, data_type), dtype=np.float64)
-    _, ms, taus_used = tau_generator(x, rate, taus)
+    ms, taus_used = _factors(len(x), rate, taus)
     alpha = {"wp": 2, "fp": 1, "wf": 0, "ff": -1, "rf": -2}.get(noisetype)
     n_valid = int(np.count_nonzero(~np.isnan(x)))
     devs = np.zeros(len(ms))
@@ -423,7 +429,7 @@ def gcodev(data_1, data_2, rate=1.0, data_type="phase", taus=None):
                          "points); they must be synchronous")
     if not (np.all(np.isfinite(x1)) and np.all(np.isfinite(x2))):
         raise ValueError("gcodev: a phase sample is not finite; remove or repair it")
-    _, ms, taus_used = tau_generator(x1, rate, taus)
+    ms, taus_used = _factors(len(x1), rate, taus)
     n_phase = len(x1)
     devs = np.zeros(len(ms))
     ns = np.maximum(n_phase - 2 * ms, 0.0)
