@@ -32,6 +32,7 @@ import numpy as np
 from . import _imunoise as _core
 from . import allantools_noise as noise
 from .allantools_dataset import Dataset, Plot
+from .allantools_kasdin import Noise
 
 __version__ = "2024.06"  # the AllanTools release whose interface this module follows
 
@@ -44,12 +45,12 @@ __all__ = [
     "three_cornered_hat_phase", "gcodev", "noise", "trim_data", "edf_simple", "edf_greenhall",
     "edf_totdev", "edf_mtotdev", "confidence_interval", "confidence_interval_noiseID",
     "autocorr_noise_id", "tau_generator", "tau_reduction", "remove_small_ns", "input_to_phase",
-    "ONE_SIGMA_CI", "Dataset", "Plot",
+    "ONE_SIGMA_CI", "Dataset", "Plot", "Noise",
 ]
 
 # AllanTools names this module does not provide (docs/allantools.md says why).
 _NOT_PROVIDED = {
-    "Noise", "psd2allan", "mask", "oadev_realtime",
+    "psd2allan", "mask", "oadev_realtime",
     "ohdev_realtime", "tdev_realtime", "calc_hdev_phase", "calc_mtotdev_phase",
     "calc_htotdev_freq",
 }
