@@ -85,7 +85,7 @@ def frequency2phase(freqdata, rate):
     """
     dt = 1.0 / float(rate)  # ZeroDivisionError for rate 0, as AllanTools
     y = np.asarray(trim_data(np.asarray(freqdata, dtype=np.float64)), dtype=np.float64)
-    if y.ndim == 1 and np.all(np.isfinite(y)):
+    if y.ndim == 1 and dt > 0 and math.isfinite(dt) and np.all(np.isfinite(y)):
         return _core._at_frequency2phase(y, 1.0 / dt)
     # Inner NaNs propagate into the phase, as AllanTools (gradev then skips them).
     x = np.cumsum(y - np.nanmean(y)) * dt

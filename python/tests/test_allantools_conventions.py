@@ -191,3 +191,10 @@ def test_bad_shapes_and_keywords_are_value_errors():
         at.oadev(np.zeros((20, 3)))
     with pytest.raises(ValueError, match="octave"):
         at.oadev(white_phase(50), taus="octaves")
+
+
+def test_negative_rate_leaves_no_tau():
+    # m = round(tau * rate) < 0 for every tau: nothing remains (AllanTools: UserWarning)
+    for data_type in ("phase", "freq"):
+        with pytest.raises(UserWarning):
+            at.oadev(white_phase(50), rate=-1.0, data_type=data_type)
