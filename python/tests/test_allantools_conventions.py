@@ -193,8 +193,9 @@ def test_bad_shapes_and_keywords_are_value_errors():
         at.oadev(white_phase(50), taus="octaves")
 
 
-def test_negative_rate_leaves_no_tau():
-    # m = round(tau * rate) < 0 for every tau: nothing remains (AllanTools: UserWarning)
+def test_negative_rate_is_a_value_error():
+    # AllanTools turns the default taus negative, m = round(tau * rate) positive again, and
+    # returns negative taus and deviations; here it is an error naming the rate.
     for data_type in ("phase", "freq"):
-        with pytest.raises(UserWarning):
+        with pytest.raises(ValueError, match="rate must be positive"):
             at.oadev(white_phase(50), rate=-1.0, data_type=data_type)
