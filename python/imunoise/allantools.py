@@ -33,6 +33,7 @@ from . import _imunoise as _core
 from . import allantools_noise as noise
 from .allantools_dataset import Dataset, Plot
 from .allantools_kasdin import Noise
+from .allantools_realtime import oadev_realtime, ohdev_realtime, tdev_realtime
 
 __version__ = "2024.06"  # the AllanTools release whose interface this module follows
 
@@ -45,13 +46,13 @@ __all__ = [
     "three_cornered_hat_phase", "gcodev", "noise", "trim_data", "edf_simple", "edf_greenhall",
     "edf_totdev", "edf_mtotdev", "confidence_interval", "confidence_interval_noiseID",
     "autocorr_noise_id", "tau_generator", "tau_reduction", "remove_small_ns", "input_to_phase",
-    "ONE_SIGMA_CI", "Dataset", "Plot", "Noise",
+    "ONE_SIGMA_CI", "Dataset", "Plot", "Noise", "oadev_realtime", "ohdev_realtime",
+    "tdev_realtime",
 ]
 
 # AllanTools names this module does not provide (docs/allantools.md says why).
 _NOT_PROVIDED = {
-    "psd2allan", "mask", "oadev_realtime",
-    "ohdev_realtime", "tdev_realtime", "calc_hdev_phase", "calc_mtotdev_phase",
+    "psd2allan", "mask", "calc_hdev_phase", "calc_mtotdev_phase",
     "calc_htotdev_freq",
 }
 
