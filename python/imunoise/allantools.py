@@ -43,7 +43,7 @@ __all__ = [
     "__version__", "adev", "oadev", "mdev", "pdev", "hdev", "ohdev", "tdev", "totdev",
     "mtotdev", "ttotdev", "htotdev", "theo1", "mtie", "mtie_phase_fast", "tierms", "gradev",
     "frequency2phase", "phase2frequency", "phase2radians", "frequency2fractional",
-    "three_cornered_hat_phase", "gcodev", "noise", "trim_data", "edf_simple", "edf_greenhall",
+    "three_cornered_hat_phase", "gcodev", "psd2allan", "noise", "trim_data", "edf_simple", "edf_greenhall",
     "edf_totdev", "edf_mtotdev", "confidence_interval", "confidence_interval_noiseID",
     "autocorr_noise_id", "tau_generator", "tau_reduction", "remove_small_ns", "input_to_phase",
     "ONE_SIGMA_CI", "Dataset", "Plot", "Noise", "oadev_realtime", "ohdev_realtime",
@@ -52,7 +52,7 @@ __all__ = [
 
 # AllanTools names this module does not provide (docs/allantools.md says why).
 _NOT_PROVIDED = {
-    "psd2allan", "mask", "calc_hdev_phase", "calc_mtotdev_phase",
+    "mask", "calc_hdev_phase", "calc_mtotdev_phase",
     "calc_htotdev_freq",
 }
 
@@ -459,6 +459,50 @@ def three_cornered_hat_phase(phasedata_ab, phasedata_bc, phasedata_ca, rate, tau
     var_a[var_a < 0] = 0
     dev_a = np.sqrt(var_a)
     return tau_ab, dev_a, [d / np.sqrt(n) for d, n in zip(dev_a, ns_ab)], ns_ab
+
+
+def psd2allan(S_y, f=1.0, kind="adev", base=2):
+    """Allan (kind 'a...') or modified Allan (kind 'm...') deviation from a one-sided PSD S_y(f)
+    of fractional frequency (1/Hz), first element at f = 0:
+
+        sigma^2(tau) = 2 int_0^F S_y(f) |sin^(k+1)(pi f tau) / (pi f tau)^k|^2 df,
+
+    k = 1 (Allan), 2 (modified, continuous-averaging form), F the last frequency. ``f`` is the
+    frequency vector (Hz) or its step. As AllanTools: the PSD is interpolated onto a grid four
+    times finer (linearly here; AllanTools uses a cubic spline from SciPy), integrated by
+    Simpson's rule, at tau = m tau0 with tau0 = 1/F and m = 1, base, base^2, ... up to and
+    including n = 1 / (2 df tau0) (base <= 1: every m < n). Returns (taus, devs).
+    """
+    if not isinstance(S_y, np.ndarray):
+        raise ValueError("psd2allan: S_y must be a numpy array")
+    if isinstance(f, np.ndarray):
+        df = float(f[1] - f[0])
+    elif np.isscalar(f):
+        df = float(f)
+    else:
+        raise ValueError("psd2allan: f must be a frequency array or a frequency step (Hz)")
+    count = S_y.size
+    fine = np.arange(1, 4 * (count - 1) + 1) * (df / 4.0)
+    psd = np.interp(fine, np.arange(count) * df, S_y.astype(np.float64))
+    tau0 = 1.0 / fine[-1]
+    n = 1.0 / df / tau0 / 2.0
+    if base > 1:
+        m = np.unique(np.round(np.append(base ** np.arange(np.floor(np.log(n) / np.log(base))), n)))
+    else:
+        m = np.arange(1, n)
+    taus = m * tau0
+    k = 1.0 if kind[0].lower() == "a" else 2.0
+    grid = np.concatenate(([0.0], fine))
+    h = df / 4.0
+    weights = np.ones(grid.size)  # composite Simpson: the grid has an odd number of points
+    weights[1:-1:2] = 4.0
+    weights[2:-1:2] = 2.0
+    devs = np.empty(len(taus))
+    for idx, tau in enumerate(taus):
+        x = np.pi * fine * tau
+        integrand = np.concatenate(([0.0], psd * (np.sin(x) ** (k + 1.0) / x ** k) ** 2))
+        devs[idx] = math.sqrt(2.0 * h / 3.0 * float(np.dot(weights, integrand)))
+    return taus, devs
 
 
 # ---- degrees of freedom, intervals, noise identification -----------------------------------

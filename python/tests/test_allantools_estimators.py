@@ -274,3 +274,36 @@ def test_gcodev_rejects_the_uncorrelated_measurement_noise():
 def test_gcodev_needs_synchronous_records():
     with pytest.raises(ValueError, match="synchronous"):
         at.gcodev(np.zeros(10), np.zeros(11))
+
+
+# ---- psd2allan -----------------------------------------------------------------------------
+
+def test_psd2allan_power_law_closed_forms():
+    # Up to F = 1e4 Hz in 1 Hz steps. Closed forms (F tau >> 1): white FM S_y = h0:
+    # AVAR = h0 / (2 tau), MVAR = h0 / (4 tau) (int sin^4 x / x^2 = pi/4, int sin^6 x / x^4 =
+    # pi/4); white PM S_y = h2 f^2: AVAR = 3 h2 F / (4 pi^2 tau^2). The neglected tails are
+    # ~0.15 / (F tau) relative in variance: F tau >= 100 below, tolerance 0.5 % (1 % for PM,
+    # whose oscillating remainder is ~1 / (pi F tau)).
+    f = np.arange(1e4 + 1)
+    h = 1e-24
+    taus, adev = at.psd2allan(h * np.ones(f.size), f, kind="adev")
+    assert taus[0] == pytest.approx(1e-4) and taus[-1] == pytest.approx(0.5)
+    far = taus * 1e4 >= 100
+    np.testing.assert_allclose(adev[far], np.sqrt(h / (2 * taus[far])), rtol=5e-3)
+    _, mdev = at.psd2allan(h * np.ones(f.size), 1.0, kind="mdev")
+    np.testing.assert_allclose(mdev[far], np.sqrt(h / (4 * taus[far])), rtol=5e-3)
+    _, wpm = at.psd2allan(h * f * f, f, kind="a")
+    np.testing.assert_allclose(wpm[far], np.sqrt(3 * h * 1e4 / (4 * np.pi ** 2 * taus[far] ** 2)),
+                               rtol=1e-2)
+
+
+def test_psd2allan_tau_list_and_bad_input():
+    # tau0 = 1/100 s, n = 50: m = base^j for j < floor(log_base n), then n itself
+    taus, _ = at.psd2allan(np.ones(101), 1.0, base=10)
+    np.testing.assert_allclose(taus, np.array([1, 50]) / 100)
+    taus, _ = at.psd2allan(np.ones(101), 1.0)
+    np.testing.assert_allclose(taus, np.array([1, 2, 4, 8, 16, 50]) / 100)
+    taus, _ = at.psd2allan(np.ones(101), 1.0, base=1)
+    np.testing.assert_allclose(taus, np.arange(1, 50) / 100)
+    with pytest.raises(ValueError):
+        at.psd2allan([1.0, 2.0])
