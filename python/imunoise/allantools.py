@@ -43,7 +43,8 @@ __all__ = [
     "__version__", "adev", "oadev", "mdev", "pdev", "hdev", "ohdev", "tdev", "totdev",
     "mtotdev", "ttotdev", "htotdev", "theo1", "mtie", "mtie_phase_fast", "tierms", "gradev",
     "frequency2phase", "phase2frequency", "phase2radians", "frequency2fractional",
-    "three_cornered_hat_phase", "gcodev", "psd2allan", "noise", "trim_data", "edf_simple", "edf_greenhall",
+    "three_cornered_hat_phase", "gcodev", "psd2allan", "noise", "calc_hdev_phase",
+    "calc_mtotdev_phase", "calc_htotdev_freq", "trim_data", "edf_simple", "edf_greenhall",
     "edf_totdev", "edf_mtotdev", "confidence_interval", "confidence_interval_noiseID",
     "autocorr_noise_id", "tau_generator", "tau_reduction", "remove_small_ns", "input_to_phase",
     "ONE_SIGMA_CI", "Dataset", "Plot", "Noise", "oadev_realtime", "ohdev_realtime",
@@ -51,10 +52,7 @@ __all__ = [
 ]
 
 # AllanTools names this module does not provide (docs/allantools.md says why).
-_NOT_PROVIDED = {
-    "mask", "calc_hdev_phase", "calc_mtotdev_phase",
-    "calc_htotdev_freq",
-}
+_NOT_PROVIDED = {"mask"}
 
 
 def __getattr__(name):
@@ -443,6 +441,38 @@ def gcodev(data_1, data_2, rate=1.0, data_type="phase", taus=None):
         d2 = x2[2 * m:] - 2.0 * x2[m:n_phase - m] + x2[:n_phase - 2 * m]
         devs[idx] = math.sqrt(abs(float(np.dot(d1, d2))) / (2.0 * ns[idx])) / m * rate
     return remove_small_ns(taus_used, devs, devs / np.sqrt(np.maximum(ns, 1.0)), ns)
+
+
+def calc_hdev_phase(phase, rate, mj, stride):
+    """One Hadamard point: third differences of phase at lag mj taken every ``stride`` samples
+    (stride mj: hdev, 1: ohdev). Returns (dev, dev / sqrt(n), n); n = 0 is reported as 1."""
+    x = np.asarray(phase, dtype=np.float64)
+    mj, stride = int(mj), int(stride)
+    third = x[3 * mj::stride]
+    n = len(third)
+    d = third - 3.0 * x[2 * mj::stride][:n] + 3.0 * x[mj::stride][:n] - x[::stride][:n]
+    n = max(n, 1)
+    dev = math.sqrt(float(np.dot(d, d)) / 6.0 / n) / (mj / float(rate))
+    return dev, dev / math.sqrt(n), n
+
+
+def calc_mtotdev_phase(phase, rate, m):
+    """One mtotdev point at averaging factor m (C++): (dev, dev / sqrt(n), n), n = N - 3m + 1."""
+    devs, ns = _core._at_deviation("mtotdev", np.asarray(phase, dtype=np.float64), float(rate),
+                                   [int(m)])
+    return devs[0], devs[0] / math.sqrt(ns[0]), int(ns[0])
+
+
+def calc_htotdev_freq(freq, m):
+    """One htotdev point at averaging factor m >= 2 from frequency data (C++):
+    (dev, dev / sqrt(n), n), n = N - 3m + 1 for N frequency points. At m = 1 htotdev is ohdev
+    (Stable32, and htotdev() here): use calc_hdev_phase."""
+    if int(m) < 2:
+        raise ValueError("calc_htotdev_freq: m must be >= 2; at m = 1 htotdev is ohdev "
+                         "(calc_hdev_phase(phase, rate, 1, 1))")
+    x = frequency2phase(freq, 1.0)
+    devs, ns = _core._at_deviation("htotdev", x, 1.0, [int(m)])
+    return devs[0], devs[0] / math.sqrt(ns[0]), int(ns[0])
 
 
 def three_cornered_hat_phase(phasedata_ab, phasedata_bc, phasedata_ca, rate, taus, function):

@@ -307,3 +307,24 @@ def test_psd2allan_tau_list_and_bad_input():
     np.testing.assert_allclose(taus, np.arange(1, 50) / 100)
     with pytest.raises(ValueError):
         at.psd2allan([1.0, 2.0])
+
+
+# ---- calc_* single points ------------------------------------------------------------------
+
+def test_calc_single_points_equal_the_estimators():
+    x = phase_dat()[:301]
+    y = np.diff(x)
+    for m in (1, 3, 10):
+        d, e, n = at.calc_hdev_phase(x, 2.0, m, m)
+        t2, d2, _, n2 = at.hdev(x, rate=2.0, taus=[m / 2.0])
+        assert d == pytest.approx(d2[0], rel=1e-12) and n == n2[0]
+        d, e, n = at.calc_hdev_phase(x, 2.0, m, 1)
+        assert d == pytest.approx(at.ohdev(x, rate=2.0, taus=[m / 2.0])[1][0], rel=1e-12)
+        d, e, n = at.calc_mtotdev_phase(x, 1.0, m)
+        assert d == pytest.approx(at.mtotdev(x, taus=[m])[1][0], rel=1e-12) and n == 301 - 3 * m + 1
+    for m in (2, 5, 20):
+        d, e, n = at.calc_htotdev_freq(y, m)
+        assert d == pytest.approx(at.htotdev(y, data_type="freq", taus=[m])[1][0], rel=1e-12)
+        assert n == 300 - 3 * m + 1 and e == pytest.approx(d / np.sqrt(n))
+    with pytest.raises(ValueError):
+        at.calc_htotdev_freq(y, 1)
