@@ -322,7 +322,6 @@ def tierms(data, rate=1.0, data_type="phase", taus=None):
     return taus_used, devs, np.zeros_like(devs), ns
 
 
-
 def mtie_phase_fast(phase, rate=1.0, data_type="phase", taus=None):
     """MTIE at the binary-decomposition factors m = 2^k - 1 (windows of 2^k points).
 

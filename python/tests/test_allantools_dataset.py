@@ -42,9 +42,8 @@ def test_write_results(tmp_path):
 
 
 def test_plot_needs_matplotlib():
-    try:
-        import matplotlib  # noqa: F401
-    except ImportError:
+    import importlib.util
+    if importlib.util.find_spec("matplotlib") is None:
         with pytest.raises(RuntimeError, match="Matplotlib"):
             at.Plot(no_display=True)
         return
