@@ -242,7 +242,10 @@ PhaseRecord load_phase(const InputOptions& options) {
   record.kind = parse_input_kind(options.input);
   record.rate_hz = options.rate_hz;
   const Unit unit = unit_of(options, record.kind, record.unit_given);
-  record.rate_unit = record.kind == InputKind::rate || !record.unit_given ? unit : derivative_unit(unit);
+  // Angle input's rate unit is the derivative of its unit, given or not: unitless phase (clock
+  // data in seconds) has the neutral time unit, whose rate is dimensionless, so the estimators
+  // reported in the angle unit (tdev, ttotdev, mtie, tierms) convert back through it.
+  record.rate_unit = record.kind == InputKind::rate ? unit : derivative_unit(unit);
   const double to_si = unit.to_si * value_scale(options);
   if (is_binary(options)) {
     load_binary(options, record, to_si);
