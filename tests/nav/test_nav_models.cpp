@@ -196,6 +196,23 @@ TEST(NavCovariance, StaysSymmetricAndPositiveSemiDefinite) {
   EXPECT_GT(c.min_eigenvalue_ratio, -1e-12);
 }
 
+TEST(NavCovariance, DoublingEqualsStepByStepPropagation) {
+  NavOptions o = two_channel(2.0);
+  o.step_s = 600.0;
+  for (auto& a : o.axes) {
+    a.coefficients.random_walk = present(8.9e-4 * kDeg);
+    a.coefficients.bias_instability = present(5.9e-4 * kDeg);
+    a.coefficients.rate_random_walk = present(0.15e-4 * kDeg);
+  }
+  o.models = {Model::covariance};
+  const NavResult fast = navigation_error(o);
+  o.covariance_per_step = true;
+  const NavResult slow = navigation_error(o);
+  for (std::size_t i = 1; i < fast.t_s.size(); ++i) {
+    EXPECT_NEAR(fast.models[0].radial_m[i] / slow.models[0].radial_m[i], 1.0, 1e-11);
+  }
+}
+
 // --- closed forms: limits and the switch to power series ------------------------------------
 
 TEST(NavSchuler, SeriesAndClosedFormMeetAtTheSwitch) {
