@@ -197,7 +197,7 @@ TEST(NavCovariance, StaysSymmetricAndPositiveSemiDefinite) {
 }
 
 TEST(NavCovariance, DoublingEqualsStepByStepPropagation) {
-  NavOptions o = two_channel(2.0);
+  NavOptions o = two_channel(1.0);
   o.step_s = 600.0;
   for (auto& a : o.axes) {
     a.coefficients.random_walk = present(8.9e-4 * kDeg);
@@ -246,6 +246,22 @@ TEST(NavSchuler, QuantizationIsBoundedAndSmall) {
   // Its dominant part is the last sample's angle noise through the loop: Q (1 - cos w0 t).
   const double v = schuler::quantization_rad(q, 1.0, 3600.0, w0);
   EXPECT_NEAR(v / (q * (1.0 - std::cos(w0 * 3600.0))), 1.0, 0.01);
+}
+
+TEST(NavSchuler, QuantizationClosedSumEqualsTheDirectSum) {
+  // Beyond k w0 h = 0.5 the sum of sin^2 is in closed form: compare with the defining formula.
+  const double w0 = 1.24001e-3, q = 1e-6, h = 0.5;
+  for (double t : {500.0, 3600.0, 21600.0}) {
+    const long k = std::lround(t / h);
+    const double xh = w0 * h;
+    auto s = [](double x) { return x - std::sin(x); };
+    const double a1 = s(xh) / w0, ak = (s(xh * static_cast<double>(k)) - s(xh * static_cast<double>(k - 1))) / w0;
+    double sum = 0.0;
+    for (long m = 1; m < k; ++m) sum += std::pow(std::sin(xh * static_cast<double>(m)), 2);
+    const double g = 4 * std::pow(std::sin(xh / 2), 2) / w0;
+    const double direct = (q / h) * std::sqrt(a1 * a1 + ak * ak + g * g * sum);
+    EXPECT_NEAR(schuler::quantization_rad(q, h, t, w0) / direct, 1.0, 1e-9) << t;
+  }
 }
 
 TEST(NavPaper, InversionsReturnTheInput) {
