@@ -297,6 +297,9 @@ TEST(NavBadInput, OptionsAreCheckedWithAClearMessage) {
   bad.axes[1].coefficients.random_walk = Coefficient{};
   EXPECT_NE(message(bad).find("no noise term"), std::string::npos);
   bad = o;
+  bad.axes[2].coefficients.quantity = Quantity::acceleration;
+  EXPECT_NE(message(bad).find("not a gyro's"), std::string::npos);
+  bad = o;
   bad.step_s = 0.5;
   EXPECT_NE(message(bad).find("--step"), std::string::npos);
   bad = o;
