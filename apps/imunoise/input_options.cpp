@@ -14,6 +14,7 @@
 #include "imunoise/error.hpp"
 #include "imunoise/finite.hpp"
 #include "imunoise/io/binary_reader.hpp"
+#include "imunoise/io/recording.hpp"
 #include "imunoise/io/text_reader.hpp"
 #include "imunoise/phase.hpp"
 
@@ -192,6 +193,77 @@ void load_text(const InputOptions& options, PhaseRecord& record, double to_si) {
   integrate_into(record, columns.values);
 }
 
+// A container recording (bag, MCAP, HDF5, EuRoC): one channel chosen by --column, its unit
+// from the file unless --units is given (and then they must agree), the rate from the
+// timestamps (checked like a text time column) or --rate.
+void load_container(const InputOptions& options, PhaseRecord& record) {
+  if (options.file == "-") throw InputError("--topic/--dataset need a file, not standard input");
+  if (!options.binary.empty()) throw InputError(record.source + ": --binary is for raw sample files; drop it");
+  if (!options.time_column.empty()) {
+    throw InputError(record.source + ": --time-column is for text files; this file's timestamps are read "
+                     "from the container (HDF5: --time-dataset)");
+  }
+  io::RecordingOptions read;
+  read.topic = options.topic;
+  read.dataset = options.dataset;
+  read.time_dataset = options.time_dataset;
+  const io::Recording recording = io::read_recording(options.file, read);
+  record.format = std::string(io::format_name(recording.format));
+  record.stream = recording.stream;
+  if (options.column.empty() && recording.channels.size() != 1) {
+    throw InputError(record.source + ": " + std::to_string(recording.channels.size()) +
+                     " channels (" + recording.channel_list() + "); choose one with --column NAME");
+  }
+  const io::Channel& channel =
+      options.column.empty() ? recording.channels.front() : recording.channel(options.column);
+  record.channel = channel.name;
+  Unit unit;
+  if (channel.unit && !options.units.empty()) {
+    unit = unit_of(options, record.kind, record.unit_given);
+    if (unit.name != channel.unit->name) {
+      throw InputError(record.source + ": channel " + channel.name + " is in " + channel.unit->name +
+                       " according to the file, but --units says " + options.units + "; drop --units");
+    }
+  } else if (channel.unit) {
+    if (record.kind != InputKind::rate) {
+      throw InputError(record.source + ": channel " + channel.name + " holds rates (" + channel.unit->name +
+                       "); drop --input angle");
+    }
+    unit = *channel.unit;
+    record.unit_given = true;
+  } else {
+    unit = unit_of(options, record.kind, record.unit_given);
+  }
+  record.rate_unit = record.kind == InputKind::rate || !record.unit_given ? unit : derivative_unit(unit);
+  if (!recording.time_s.empty()) {
+    record.timing = io::check_timing(recording.time_s, record.source, nullptr, options.allow_gaps);
+    if (record.rate_hz > 0 && std::abs(record.timing->rate_hz / record.rate_hz - 1.0) > 0.01) {
+      throw InputError(record.source + ": --rate " + fmt::format("{}", record.rate_hz) +
+                       " Hz disagrees with the file's timestamps (" +
+                       fmt::format("{:.6g}", record.timing->rate_hz) + " Hz from the median interval); drop --rate");
+    }
+    if (record.rate_hz <= 0) record.rate_hz = record.timing->rate_hz;
+  }
+  require_rate(record.rate_hz, record.source);
+  const double to_si = unit.to_si * value_scale(options);
+  std::vector<double> values(channel.values);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) {
+      throw InputError(record.source + ": channel " + channel.name + " sample " + std::to_string(i) +
+                       " is not finite (NaN or Inf); the analysis needs every sample");
+    }
+    values[i] *= to_si;
+  }
+  record.n_samples = values.size();
+  integrate_into(record, values);
+}
+
+bool is_container(const InputOptions& options) {
+  if (!options.topic.empty() || !options.dataset.empty() || !options.time_dataset.empty()) return true;
+  if (options.file == "-" || !options.binary.empty()) return false;
+  return io::detect_container(options.file).has_value();
+}
+
 // The sample rate stated by the header of a text file written by `imunoise simulate`
 // ("# imunoise simulate ..." then "# rate_hz R ..."); 0 when the file is not one.
 double simulated_file_rate_hz(const std::string& path) {
@@ -211,7 +283,7 @@ double simulated_file_rate_hz(const std::string& path) {
 }  // namespace
 
 void add_input_options(CLI::App& command, InputOptions& options) {
-  command.add_option("file", options.file, "input file (text or raw binary); - for standard input")
+  command.add_option("file", options.file, "input file (text, raw binary, ROS 1 bag, MCAP, HDF5 or EuRoC CSV); - for standard input")
       ->required();
   command.add_option("--rate", options.rate_hz, "sample rate (Hz)");
   command.add_option("--input", options.input, "what the samples are: rate (freq) or angle (phase)")
@@ -225,6 +297,12 @@ void add_input_options(CLI::App& command, InputOptions& options) {
                      "column of timestamps (s, or integer ns); derives the rate and checks gaps");
   command.add_flag("--allow-gaps", options.allow_gaps,
                    "treat a record with timestamp gaps as equally spaced (never interpolated)");
+  command.add_option("--topic", options.topic,
+                     "ROS 1 bag / MCAP: topic of sensor_msgs Imu messages (channels gyro_x gyro_y "
+                     "gyro_z accel_x accel_y accel_z; choose with --column)");
+  command.add_option("--dataset", options.dataset, "HDF5: dataset path, 1-D or 2-D (N x channels)");
+  command.add_option("--time-dataset", options.time_dataset,
+                     "HDF5: 1-D dataset of timestamps (integer ns, or s; a units attribute overrides)");
   command.add_option("--binary", options.binary, "raw binary samples: f32|f64|i16|i32[:le|be]");
   command.add_option("--channels", options.channels, "interleaved channels in binary input")
       ->check(CLI::Range(std::size_t{1}, std::size_t{65536}));
@@ -241,6 +319,13 @@ PhaseRecord load_phase(const InputOptions& options) {
   }
   record.kind = parse_input_kind(options.input);
   record.rate_hz = options.rate_hz;
+  if (is_container(options)) {
+    load_container(options, record);
+    if (record.n_samples == 0) throw InputError(record.source + ": no samples");
+    require_finite_phase(record);
+    return record;
+  }
+  record.format = is_binary(options) ? "binary" : "text";
   const Unit unit = unit_of(options, record.kind, record.unit_given);
   record.rate_unit = record.kind == InputKind::rate || !record.unit_given ? unit : derivative_unit(unit);
   const double to_si = unit.to_si * value_scale(options);

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "imunoise/io/recording.hpp"
 #include "imunoise/io/timestamps.hpp"
 #include "imunoise/series.hpp"
 #include "imunoise/units.hpp"
@@ -25,6 +26,9 @@ struct InputOptions {
   double scale = 1.0;            ///< --scale: value = raw * scale
   double sensitivity = 0.0;      ///< --sensitivity: value = raw / sensitivity (0: unset)
   bool allow_gaps = false;       ///< --allow-gaps
+  std::string topic;             ///< --topic (ROS 1 bag, MCAP)
+  std::string dataset;           ///< --dataset (HDF5)
+  std::string time_dataset;      ///< --time-dataset (HDF5)
 };
 
 void add_input_options(CLI::App& command, InputOptions& options);
@@ -39,6 +43,9 @@ struct PhaseRecord {
   Unit rate_unit;                ///< unit deviations are reported in
   bool unit_given = false;       ///< false when --units was not given (label "input unit")
   std::optional<io::TimingReport> timing;
+  std::string format;            ///< container read ("text", "binary", "ROS 1 bag", "MCAP", ...)
+  std::string stream;            ///< topic or dataset read, when the container has several
+  std::string channel;           ///< channel read (e.g. "gyro_x"), when the container names them
 };
 
 /// Reads, checks and integrates the input. Raw binary files are streamed in chunks straight
