@@ -274,7 +274,9 @@ class McapReader {
     check_topic();
     std::uint64_t expected = 0;
     for (const auto& [id, d] : decoder_) expected += stats_counts_.contains(id) ? stats_counts_[id] : 0;
-    columns_.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(expected, std::uint64_t{1} << 28)));
+    // Counts come from the file: never reserve more than its bytes could hold (a compressed
+    // Imu message still takes > 8 bytes), so a corrupt count cannot exhaust memory.
+    columns_.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(expected, bytes_.size() / 8)));
     std::vector<std::size_t> order(chunks.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](auto a, auto b) { return chunks[a].first < chunks[b].first; });

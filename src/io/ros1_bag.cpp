@@ -187,7 +187,9 @@ class BagReader {
     }
     std::uint64_t total = 0;
     for (const auto k : wanted_) total += connections_[k].count;
-    columns_.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(total, std::uint64_t{1} << 28)));
+    // The counts come from the file: never reserve more than its bytes could hold (an Imu
+    // message record is > 300 bytes), so a corrupt count cannot exhaust memory.
+    columns_.reserve(static_cast<std::size_t>(std::min<std::uint64_t>(total, bytes_.size() / 256)));
   }
 
   // The topic must exist and carry sensor_msgs/Imu; otherwise list what the bag holds.
