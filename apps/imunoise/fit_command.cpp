@@ -136,6 +136,11 @@ void run_fit(FitOptionsCli& options) {
   if (!fo.IsValid(&why)) throw InputError("fit options: " + why);
 
   const PhaseRecord record = load_phase(options.input);
+  if (record.segments.size() > 1) {
+    throw InputError(record.source + ": fit needs one contiguous record, but --gaps split / --outliers reject "
+                     "split it into " + std::to_string(record.segments.size()) + " segments; fix: fit the longest "
+                     "gap-free stretch, or use --allow-gaps / --outliers report");
+  }
   const double tau0_s = 1.0 / record.rate_hz;
   auto warnings = fit::record_warnings(record.phase_si, tau0_s);
   if (fit::is_constant_record(record.phase_si, tau0_s)) {

@@ -9,6 +9,8 @@
 
 #include "imunoise/io/recording.hpp"
 #include "imunoise/io/timestamps.hpp"
+#include "imunoise/preprocess/dynamic_allan.hpp"
+#include "imunoise/preprocess/preprocess.hpp"
 #include "imunoise/series.hpp"
 #include "imunoise/units.hpp"
 
@@ -29,6 +31,13 @@ struct InputOptions {
   std::string topic;             ///< --topic (ROS 1 bag, MCAP)
   std::string dataset;           ///< --dataset (HDF5)
   std::string time_dataset;      ///< --time-dataset (HDF5)
+  // Preprocessing (rate input): every step is reported in PhaseRecord::preprocessing.
+  std::string skip;              ///< --skip DURATION (s, min, h suffix) or "auto" (from DAVAR)
+  std::string detrend = "none";  ///< --detrend none|linear|quadratic
+  std::string outliers;          ///< --outliers fail|report|reject ("" = not checked)
+  std::string gaps;              ///< --gaps fail|split ("" = fail, unless --allow-gaps)
+  bool davar = false;            ///< --davar: dynamic Allan variance and stationarity verdict
+  double davar_window_s = 0.0;   ///< --davar-window (0: record / 20)
 };
 
 void add_input_options(CLI::App& command, InputOptions& options);
@@ -46,6 +55,13 @@ struct PhaseRecord {
   std::string format;            ///< container read ("text", "binary", "ROS 1 bag", "MCAP", ...)
   std::string stream;            ///< topic or dataset read, when the container has several
   std::string channel;           ///< channel read (e.g. "gyro_x"), when the container names them
+  /// One line per preprocessing step: what was removed and how much.
+  std::vector<std::string> preprocessing;
+  /// More than one when the record was split (--gaps split, --outliers reject): rate-sample
+  /// ranges analysed as independent segments whose Allan sums are pooled (never joined).
+  std::vector<preprocess::Segment> segments;
+  std::vector<double> rate_si;   ///< the rate samples (SI), kept only when split into segments
+  std::optional<preprocess::DavarResult> davar;
 };
 
 /// Reads, checks and integrates the input. Raw binary files are streamed in chunks straight
