@@ -15,6 +15,7 @@
 #include "imunoise/phase.hpp"
 #include "imunoise/preprocess/dynamic_allan.hpp"
 #include "imunoise/preprocess/preprocess.hpp"
+#include "imunoise/preprocess/temperature.hpp"
 
 namespace imunoise::preprocess {
 namespace {
@@ -167,6 +168,48 @@ TEST(Davar, ExponentialWarmUpFlaggedAndTheSuggestedSkipRemovesIt) {
   const std::vector<double> rest(v.begin() + static_cast<std::ptrdiff_t>(skip), v.end());
   const DavarResult after = dynamic_allan(rest, rate, {60.0, 15.0});
   EXPECT_TRUE(after.stationary) << "skip " << r.suggested_skip_s << " s";
+}
+
+}  // namespace
+}  // namespace imunoise::preprocess
+
+namespace imunoise::preprocess {
+namespace {
+
+TEST(TemperatureBins, BiasAndRandomWalkPerBinRecovered) {
+  // 100 Hz; the temperature ramps 10 -> 40 degC and back twice; bias 1e-3 + 2e-4 (T - 25) and a
+  // white-noise level that doubles above 30 degC. Bins of 10 degC: [10,20) [20,30) [30,40).
+  const double rate = 100.0;
+  const std::size_t n = 400'000;
+  std::mt19937_64 rng(21);
+  std::normal_distribution<double> g(0.0, 1.0);
+  std::vector<double> temperature(n);
+  std::vector<double> values(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const double phase = std::fmod(static_cast<double>(i) / (n / 2.0), 1.0);  // two cycles
+    const double t_c = 10.0 + 30.0 * (phase < 0.5 ? 2 * phase : 2 - 2 * phase);
+    temperature[i] = std::min(t_c, 39.999);
+    const double sigma = t_c >= 30.0 ? 2e-3 : 1e-3;
+    values[i] = 1e-3 + 2e-4 * (t_c - 25.0) + sigma * g(rng);
+  }
+  const auto bins = temperature_bins(values, temperature, rate, 10.0);
+  ASSERT_EQ(bins.size(), 3u);
+  for (const auto& b : bins) {
+    SCOPED_TRACE("bin " + std::to_string(b.low));
+    EXPECT_EQ(b.high - b.low, 10.0);
+    // Runs: the middle range is crossed 4 times; the bottom one is left and re-entered at the
+    // cycle boundary (3 runs: start, boundary, end); each peak is one run in the top one (2).
+    EXPECT_EQ(b.segments, b.low == 10.0 ? 3u : b.low == 20.0 ? 4u : 2u);
+    // Bias: the true mean over the bin's samples is 1e-3 + 2e-4 (mean T - 25).
+    EXPECT_NEAR(b.bias_si, 1e-3 + 2e-4 * (b.mean_temperature - 25.0), 5 * b.bias_stderr_si);
+    // N = sigma / sqrt(rate) for white rate noise; at tau = 1 s the pooled edf is ~ samples/100,
+    // relative sd of the deviation 1 / sqrt(2 edf) ~ 3 %: 5 sd = 16 %. The bias ramp inside the
+    // bin adds a drift of 2e-4 * 10 over a pass, small at 1 s.
+    const double sigma = b.low >= 30.0 ? 2e-3 : 1e-3;
+    EXPECT_NEAR(b.random_walk_si / (sigma / std::sqrt(rate)), 1.0, 0.16);
+    EXPECT_EQ(b.random_walk_tau_s, 1.28);
+  }
+  EXPECT_THROW(temperature_bins(values, temperature, rate, 0.0), InputError);
 }
 
 }  // namespace
