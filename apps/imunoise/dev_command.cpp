@@ -104,6 +104,16 @@ std::string format_json(const PhaseRecord& record, const std::vector<Curve>& cur
                          {"window_flagged", d.window_flagged}, {"stationary", d.stationary},
                          {"change_times_s", d.change_times_s}, {"suggested_skip_s", d.suggested_skip_s}};
     }
+    if (!record.temperature_bins.empty()) {
+      auto bins = nlohmann::json::array();
+      for (const auto& b : record.temperature_bins) {
+        bins.push_back({{"low", b.low}, {"high", b.high}, {"samples", b.samples}, {"runs", b.segments},
+                        {"mean_temperature", b.mean_temperature}, {"bias_si", b.bias_si},
+                        {"bias_stderr_si", b.bias_stderr_si}, {"N_si", json_number(b.random_walk_si)},
+                        {"N_tau_s", b.random_walk_tau_s}, {"B_si", json_number(b.bias_instability_si)}});
+      }
+      object["temperature_bins"] = std::move(bins);
+    }
     if (record.timing) {
       const auto& t = *record.timing;
       object["timing"] = {{"rate_hz", t.rate_hz}, {"median_dt_s", t.median_dt_s},

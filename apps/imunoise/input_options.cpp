@@ -150,14 +150,14 @@ double parse_duration_s(const std::string& text) {
 
 bool wants_preprocessing(const InputOptions& options) {
   return !options.skip.empty() || options.detrend != "none" || !options.outliers.empty() ||
-         options.gaps == "split" || options.davar;
+         options.gaps == "split" || options.davar || !options.temperature.empty();
 }
 
 // The preprocessing steps on rate samples in SI, in order: warm-up skip, detrend, spikes, and
 // the split into segments at gaps and rejected spikes. `gap_breaks`: first sample after each
 // timestamp gap (for --gaps split). Each step says what it removed in record.preprocessing.
 std::vector<double> preprocess_rates(const InputOptions& options, PhaseRecord& record, std::vector<double> values,
-                                     std::vector<std::size_t> gap_breaks) {
+                                     std::vector<std::size_t> gap_breaks, std::vector<double> temperature = {}) {
   if (!wants_preprocessing(options)) return values;
   if (record.kind != InputKind::rate) {
     throw InputError(record.source + ": --skip, --detrend, --outliers, --gaps split and --davar work on "
@@ -185,6 +185,27 @@ std::vector<double> preprocess_rates(const InputOptions& options, PhaseRecord& r
                      " samples; fix: skip less than the record");
   }
   values.erase(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(skip));
+  if (!options.temperature.empty()) {
+    // Binned on the rates as recorded (after the skip, before detrending: the bias per bin is
+    // what a temperature calibration needs).
+    if (temperature.size() != values.size() + skip) {
+      throw InputError(record.source + ": --temperature " + options.temperature + " has " +
+                       std::to_string(temperature.size()) + " samples, the rate " + std::to_string(values.size() + skip) +
+                       "; fix: choose a temperature column of the same record");
+    }
+    temperature.erase(temperature.begin(), temperature.begin() + static_cast<std::ptrdiff_t>(skip));
+    record.temperature_bins = preprocess::temperature_bins(values, temperature, rate, options.temperature_bin);
+    for (const auto& b : record.temperature_bins) {
+      record.preprocessing.push_back(fmt::format(
+          "temperature [{:g}, {:g}): {} samples in {} runs, mean {:.4g}; bias {:.6g} +- {:.2g} {}; "
+          "N {:.6g} {}*sqrt(s) (tau {:g} s); B {:.6g} {}", b.low, b.high, b.samples, b.segments,
+          b.mean_temperature, b.bias_si, b.bias_stderr_si, unit, b.random_walk_si, unit, b.random_walk_tau_s,
+          b.bias_instability_si, unit));
+    }
+    if (record.temperature_bins.empty()) {
+      record.preprocessing.push_back("temperature: no bin holds 1000 samples; fix: widen --temperature-bin");
+    }
+  }
   std::vector<std::size_t> breaks;
   for (const auto b : gap_breaks) if (b > skip) breaks.push_back(b - skip);
 
@@ -361,7 +382,15 @@ void load_text(const InputOptions& options, PhaseRecord& record, double to_si) {
   require_rate(record.rate_hz, record.source);
   for (auto& v : columns.values) v *= to_si;
   if (wants_preprocessing(options)) {
-    finish_rates(record, preprocess_rates(options, record, std::move(columns.values), gap_breaks(options, record)));
+    std::vector<double> temperature;
+    if (!options.temperature.empty()) {
+      if (options.file == "-") throw InputError("--temperature needs a file, not standard input");
+      io::TextReadOptions t;
+      t.column = io::parse_column_selector(options.temperature);
+      temperature = io::read_text_file(options.file, t).values;
+    }
+    finish_rates(record, preprocess_rates(options, record, std::move(columns.values), gap_breaks(options, record),
+                                          std::move(temperature)));
     return;
   }
   record.n_samples = columns.values.size();
@@ -429,7 +458,10 @@ void load_container(const InputOptions& options, PhaseRecord& record) {
     }
     values[i] *= to_si;
   }
-  finish_rates(record, preprocess_rates(options, record, std::move(values), gap_breaks(options, record)));
+  std::vector<double> temperature;
+  if (!options.temperature.empty()) temperature = recording.channel(options.temperature).values;
+  finish_rates(record, preprocess_rates(options, record, std::move(values), gap_breaks(options, record),
+                                        std::move(temperature)));
 }
 
 bool is_container(const InputOptions& options) {
@@ -491,6 +523,10 @@ void add_input_options(CLI::App& command, InputOptions& options) {
   command.add_flag("--davar", options.davar,
                    "dynamic Allan variance (sliding window) and a stationarity verdict");
   command.add_option("--davar-window", options.davar_window_s, "DAVAR window (s); default record / 20");
+  command.add_option("--temperature", options.temperature,
+                     "temperature column/channel: bias, N and B reported per temperature bin");
+  command.add_option("--temperature-bin", options.temperature_bin, "temperature bin width (channel's unit)")
+      ->capture_default_str();
   command.add_option("--binary", options.binary, "raw binary samples: f32|f64|i16|i32[:le|be]");
   command.add_option("--channels", options.channels, "interleaved channels in binary input")
       ->check(CLI::Range(std::size_t{1}, std::size_t{65536}));

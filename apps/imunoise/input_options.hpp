@@ -11,6 +11,7 @@
 #include "imunoise/io/timestamps.hpp"
 #include "imunoise/preprocess/dynamic_allan.hpp"
 #include "imunoise/preprocess/preprocess.hpp"
+#include "imunoise/preprocess/temperature.hpp"
 #include "imunoise/series.hpp"
 #include "imunoise/units.hpp"
 
@@ -38,6 +39,8 @@ struct InputOptions {
   std::string gaps;              ///< --gaps fail|split ("" = fail, unless --allow-gaps)
   bool davar = false;            ///< --davar: dynamic Allan variance and stationarity verdict
   double davar_window_s = 0.0;   ///< --davar-window (0: record / 20)
+  std::string temperature;       ///< --temperature COLUMN|CHANNEL: bin the analysis by temperature
+  double temperature_bin = 5.0;  ///< --temperature-bin WIDTH (the temperature channel's unit)
 };
 
 void add_input_options(CLI::App& command, InputOptions& options);
@@ -62,6 +65,7 @@ struct PhaseRecord {
   std::vector<preprocess::Segment> segments;
   std::vector<double> rate_si;   ///< the rate samples (SI), kept only when split into segments
   std::optional<preprocess::DavarResult> davar;
+  std::vector<preprocess::TemperatureBin> temperature_bins;  ///< with --temperature
 };
 
 /// Reads, checks and integrates the input. Raw binary files are streamed in chunks straight

@@ -131,3 +131,33 @@ TEST_F(PreprocessCli, SpikesFailReportReject) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(PreprocessCli, TemperatureBinsReportedPerBin) {
+  std::ofstream out(dir_ / "temp.csv");
+  out << "t,gx,temp_c\n";
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> g(0.0, 0.01);
+  char line[96];
+  for (std::size_t i = 0; i < 40'000; ++i) {
+    const double t = static_cast<double>(i) / 100.0;
+    const double temp = 20.0 + 10.0 * static_cast<double>(i) / 40'000.0;  // 20 -> 30 degC
+    std::snprintf(line, sizeof line, "%.2f,%.9e,%.4f\n", t, 0.1 + 0.01 * (temp - 20.0) + g(rng), temp);
+    out << line;
+  }
+  out.close();
+  const CliRun r = dev({(dir_ / "temp.csv").string(), "--time-column", "t", "--column", "gx", "--temperature",
+                        "temp_c", "--temperature-bin", "5", "--format", "json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto bins = nlohmann::json::parse(r.out).at("temperature_bins");
+  ASSERT_EQ(bins.size(), 2u);
+  EXPECT_EQ(bins[0].at("low").get<double>(), 20.0);
+  EXPECT_EQ(bins[1].at("low").get<double>(), 25.0);
+  for (const auto& b : bins) {
+    const double expected = 0.1 + 0.01 * (b.at("mean_temperature").get<double>() - 20.0);
+    EXPECT_NEAR(b.at("bias_si").get<double>(), expected, 5 * b.at("bias_stderr_si").get<double>());
+  }
+}
+
+}  // namespace
