@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
+#include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <string_view>
@@ -86,11 +88,30 @@ class MappedFile {
   std::size_t size_ = 0;
 };
 
+/// An owned byte buffer left uninitialised (decompression overwrites all of it: zero-filling
+/// 1.5 GB first would cost a pass over memory).
+class Bytes {
+ public:
+  Bytes() = default;
+  explicit Bytes(std::size_t n) : data_(n ? new unsigned char[n] : nullptr), size_(n) {}
+  [[nodiscard]] unsigned char* data() { return data_.get(); }
+  [[nodiscard]] std::size_t size() const { return size_; }
+  [[nodiscard]] std::span<const unsigned char> span() const { return {data_.get(), size_}; }
+
+ private:
+  std::unique_ptr<unsigned char[]> data_;
+  std::size_t size_ = 0;
+};
+
 /// Decompressors; `expected` is the uncompressed size the container states, which the output
 /// must match exactly. Throw InputError prefixed with `where`.
-std::string decompress_bz2(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where);
-std::string decompress_lz4_frame(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where);
-std::string decompress_zstd(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where);
+Bytes decompress_bz2(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where);
+Bytes decompress_lz4_frame(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where);
+Bytes decompress_zstd(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where);
+
+/// Runs work(i) for i in [0, count) on up to hardware_concurrency threads (chunks of a
+/// container are independent); the first exception in index order is rethrown.
+void parallel_for(std::size_t count, const std::function<void(std::size_t)>& work);
 
 /// The six IMU values and the stamp of one sensor_msgs Imu message.
 struct ImuSample {
@@ -112,6 +133,10 @@ struct ImuColumns {
   void reserve(std::size_t n) {
     stamp_ns.reserve(n);
     for (auto& c : v) c.reserve(n);
+  }
+  void append(const ImuColumns& other) {
+    stamp_ns.insert(stamp_ns.end(), other.stamp_ns.begin(), other.stamp_ns.end());
+    for (int i = 0; i < 6; ++i) v[i].insert(v[i].end(), other.v[i].begin(), other.v[i].end());
   }
   void push(const ImuSample& s) {
     stamp_ns.push_back(s.stamp_ns);

@@ -8,7 +8,10 @@
 #include <unistd.h>
 #include <zstd.h>
 
+#include <atomic>
 #include <bit>
+#include <exception>
+#include <thread>
 #include <cerrno>
 #include <cstring>
 
@@ -69,12 +72,12 @@ static void check_size(std::uint64_t expected, std::size_t compressed, const std
   }
 }
 
-std::string decompress_bz2(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where) {
+Bytes decompress_bz2(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where) {
   check_size(expected, in.size(), where);
-  std::string out(expected, '\0');
+  Bytes out(static_cast<std::size_t>(expected));
   unsigned int out_len = static_cast<unsigned int>(expected);
   if (in.size() > 0xffffffffu) throw InputError(where + ": bz2 chunk too large");
-  const int rc = BZ2_bzBuffToBuffDecompress(out.data(), &out_len,
+  const int rc = BZ2_bzBuffToBuffDecompress(reinterpret_cast<char*>(out.data()), &out_len,
                                             const_cast<char*>(reinterpret_cast<const char*>(in.data())),
                                             static_cast<unsigned int>(in.size()), 0, 0);
   if (rc != BZ_OK || out_len != expected) {
@@ -84,9 +87,9 @@ std::string decompress_bz2(std::span<const unsigned char> in, std::uint64_t expe
   return out;
 }
 
-std::string decompress_lz4_frame(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where) {
+Bytes decompress_lz4_frame(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where) {
   check_size(expected, in.size(), where);
-  std::string out(expected, '\0');
+  Bytes out(static_cast<std::size_t>(expected));
   LZ4F_dctx* ctx = nullptr;
   if (LZ4F_isError(LZ4F_createDecompressionContext(&ctx, LZ4F_VERSION))) {
     throw InputError(where + ": cannot create an lz4 context");
@@ -115,9 +118,9 @@ std::string decompress_lz4_frame(std::span<const unsigned char> in, std::uint64_
   return out;
 }
 
-std::string decompress_zstd(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where) {
+Bytes decompress_zstd(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where) {
   check_size(expected, in.size(), where);
-  std::string out(expected, '\0');
+  Bytes out(static_cast<std::size_t>(expected));
   const std::size_t n = ZSTD_decompress(out.data(), out.size(), in.data(), in.size());
   if (ZSTD_isError(n)) {
     throw InputError(where + ": zstd data is corrupt (" + ZSTD_getErrorName(n) + "); fix: copy the file again");
@@ -127,6 +130,28 @@ std::string decompress_zstd(std::span<const unsigned char> in, std::uint64_t exp
                      std::to_string(expected) + "; fix: the file is corrupt, copy it again");
   }
   return out;
+}
+
+void parallel_for(std::size_t count, const std::function<void(std::size_t)>& work) {
+  const std::size_t threads = std::min<std::size_t>(count, std::max(1u, std::min(8u, std::thread::hardware_concurrency())));
+  std::vector<std::exception_ptr> errors(count);
+  std::atomic<std::size_t> next{0};
+  auto run = [&] {
+    for (std::size_t i; (i = next.fetch_add(1)) < count;) {
+      try {
+        work(i);
+      } catch (...) {
+        errors[i] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(run);
+  run();
+  for (auto& t : pool) t.join();
+  for (auto& e : errors) {
+    if (e) std::rethrow_exception(e);
+  }
 }
 
 // ROS 1: Header{uint32 seq, uint32 sec, uint32 nsec, string frame_id}, then orientation (4

@@ -150,7 +150,7 @@ class McapReader {
     return out;
   }
 
-  void message(ByteCursor c) {
+  void message(ByteCursor c, detail::ImuColumns& out) {
     const std::uint16_t id = c.u16("message channel id");
     if (scanning_) {
       const auto it = channels_.find(id);
@@ -173,10 +173,10 @@ class McapReader {
     if (it->second == 2 ? !detail::decode_cdr_imu(data, s, error) : !detail::decode_ros1_imu(data, s)) {
       c.fail(error.empty() ? "a sensor_msgs/Imu message is too short (corrupt)" : error);
     }
-    columns_.push(s);
+    out.push(s);
   }
 
-  void chunk(const Rec& r, std::uint64_t base) {
+  void chunk(const Rec& r, std::uint64_t base, detail::ImuColumns& out) {
     ByteCursor c = content(r, "chunk", base);
     c.take(16, "chunk message times");
     const std::uint64_t uncompressed = c.u64("chunk uncompressed size");
@@ -185,17 +185,16 @@ class McapReader {
     const std::uint64_t len = c.u64("chunk records length");
     const auto records = c.take(len, "chunk records");
     const std::string where = source_ + ": chunk at byte " + std::to_string(base + r.offset);
-    std::string owned;
+    detail::Bytes owned;
     std::span<const unsigned char> data = records;
-    if (compression == "zstd") owned = detail::decompress_zstd(records, uncompressed, where);
-    else if (compression == "lz4") owned = detail::decompress_lz4_frame(records, uncompressed, where);
+    if (compression == "zstd") data = (owned = detail::decompress_zstd(records, uncompressed, where)).span();
+    else if (compression == "lz4") data = (owned = detail::decompress_lz4_frame(records, uncompressed, where)).span();
     else if (!compression.empty()) throw InputError(where + ": unknown chunk compression '" + compression + "'; fix: recompress with 'mcap convert' to zstd or lz4");
     else if (records.size() != uncompressed) throw InputError(where + ": uncompressed chunk size disagrees with its header; fix: the file is corrupt, copy it again");
-    if (!owned.empty()) data = {reinterpret_cast<const unsigned char*>(owned.data()), owned.size()};
     ByteCursor inner(data, where + " (decompressed)");
     while (!inner.at_end()) {
       const Rec m = next(inner);
-      if (m.op == kMessage) message(ByteCursor(m.content, inner.where()));
+      if (m.op == kMessage) message(ByteCursor(m.content, inner.where()), out);
       else if (m.op == kSchema && scanning_) add_schema(ByteCursor(m.content, inner.where()));
       else if (m.op == kChannel && scanning_) add_channel(ByteCursor(m.content, inner.where()));
     }
@@ -212,8 +211,8 @@ class McapReader {
       const Rec r = next(c);
       if (r.op == kSchema) add_schema(content(r, "schema", 0));
       else if (r.op == kChannel) add_channel(content(r, "channel", 0));
-      else if (r.op == kMessage) message(content(r, "message", 0));
-      else if (r.op == kChunk) chunk(r, 0);
+      else if (r.op == kMessage) message(content(r, "message", 0), columns_);
+      else if (r.op == kChunk) chunk(r, 0, columns_);
       else if (r.op == kDataEnd || r.op == kFooter) break;
     }
     check_topic();
@@ -280,6 +279,7 @@ class McapReader {
     std::vector<std::size_t> order(chunks.size());
     for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
     std::sort(order.begin(), order.end(), [&](auto a, auto b) { return chunks[a].first < chunks[b].first; });
+    std::vector<Rec> selected;
     for (const auto i : order) {
       // A chunk index without message index offsets says nothing about its channels: read it.
       const auto& ids = chunk_channels[i];
@@ -288,8 +288,13 @@ class McapReader {
       cc.seek(static_cast<std::size_t>(std::min<std::uint64_t>(chunks[i].first, bytes_.size())), "chunk start offset");
       const Rec r = next(cc);
       if (r.op != kChunk) cc.fail("a chunk index points at a record that is not a chunk (corrupt)");
-      chunk(r, 0);
+      selected.push_back(r);
     }
+    // Chunks are independent: decompress and decode them in parallel (zstd is ~60 % of the
+    // time), then concatenate in file order.
+    std::vector<detail::ImuColumns> parts(selected.size());
+    detail::parallel_for(selected.size(), [&](std::size_t k) { chunk(selected[k], 0, parts[k]); });
+    for (auto& part : parts) columns_.append(part);
     return true;
   }
 

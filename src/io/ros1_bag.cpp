@@ -118,13 +118,16 @@ class BagReader {
     const std::size_t first_record = c.pos();
     if (index_pos != 0 && read_index(index_pos)) {
       select_connections();
-      for (const auto pos : chunks_) {
+      // Chunks are independent: decompress and decode them in parallel, concatenate in order.
+      std::vector<detail::ImuColumns> parts(chunks_.size());
+      detail::parallel_for(chunks_.size(), [&](std::size_t k) {
         ByteCursor cc(bytes_, source_);
-        cc.seek(pos, "chunk_pos of a chunk info");
+        cc.seek(chunks_[k], "chunk_pos of a chunk info");
         const Record chunk = next_record(cc);
         if (*chunk.fields.op != kChunk) cc.fail("chunk_pos does not point at a chunk record (corrupt index)");
-        read_chunk(chunk, pos, false);
-      }
+        read_chunk(chunk, chunks_[k], false, parts[k]);
+      });
+      for (auto& part : parts) columns_.append(part);
     } else {
       connections_.clear();
       scan(first_record);
@@ -226,17 +229,17 @@ class BagReader {
     while (!c.at_end()) {
       const std::size_t at = c.pos();
       const Record r = next_record(c);
-      if (*r.fields.op == kChunk) read_chunk(r, at, true);
+      if (*r.fields.op == kChunk) read_chunk(r, at, true, columns_);
       else if (*r.fields.op == kConnection) add_connection(r, c);
-      else if (*r.fields.op == kMessage) message(r, c);
+      else if (*r.fields.op == kMessage) message(r, c, columns_);
     }
     check_topic();
   }
 
-  void read_chunk(const Record& chunk, std::size_t file_offset, bool scanning) {
+  void read_chunk(const Record& chunk, std::size_t file_offset, bool scanning, detail::ImuColumns& out) {
     const std::string where = source_ + ": chunk at byte " + std::to_string(file_offset);
     if (!chunk.fields.size) throw InputError(where + ": chunk without 'size'; fix: the file is corrupt, copy it again");
-    std::string owned;
+    detail::Bytes owned;
     std::span<const unsigned char> data;
     const auto comp = chunk.fields.compression;
     if (comp == "none") {
@@ -246,23 +249,22 @@ class BagReader {
                          " bytes but its header says " + std::to_string(*chunk.fields.size) + "; fix: the file is corrupt, copy it again");
       }
     } else if (comp == "bz2") {
-      owned = detail::decompress_bz2(chunk.data, *chunk.fields.size, where);
+      data = (owned = detail::decompress_bz2(chunk.data, *chunk.fields.size, where)).span();
     } else if (comp == "lz4") {
-      owned = detail::decompress_lz4_frame(chunk.data, *chunk.fields.size, where);
+      data = (owned = detail::decompress_lz4_frame(chunk.data, *chunk.fields.size, where)).span();
     } else {
       throw InputError(where + ": unknown chunk compression '" + printable(comp) +
                        "'; fix: recompress the bag with 'rosbag compress --lz4' (none, bz2 and lz4 are read)");
     }
-    if (!owned.empty()) data = {reinterpret_cast<const unsigned char*>(owned.data()), owned.size()};
     ByteCursor c(data, where + " (decompressed)");
     while (!c.at_end()) {
       const Record r = next_record(c);
-      if (*r.fields.op == kMessage) message(r, c);
+      if (*r.fields.op == kMessage) message(r, c, out);
       else if (*r.fields.op == kConnection && scanning) add_connection(r, c);
     }
   }
 
-  void message(const Record& r, const ByteCursor& c) {
+  void message(const Record& r, const ByteCursor& c, detail::ImuColumns& out) {
     if (!r.fields.conn) c.fail("message record without 'conn' (corrupt)");
     const std::uint32_t conn = *r.fields.conn;
     if (counting_) {
@@ -277,7 +279,7 @@ class BagReader {
     if (!detail::decode_ros1_imu(r.data, s)) {
       c.fail("a sensor_msgs/Imu message of " + std::to_string(r.data.size()) + " bytes is too short (corrupt)");
     }
-    columns_.push(s);
+    out.push(s);
   }
 
   Recording finish() {
