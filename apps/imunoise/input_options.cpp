@@ -2,6 +2,7 @@
 
 #include <sys/mman.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -128,6 +129,37 @@ void integrate_into(PhaseRecord& record, std::span<const double> values_si) {
   }
   const double offset = compensated_mean(values_si.first(std::min(values_si.size(), kOffsetSamples)));
   record.phase_si = phase_from_rate(values_si, 1.0 / record.rate_hz, offset);
+}
+
+// Timestamps checked as by io::check_timing, after refusing a record whose sample rate changes:
+// if more than 5 % of the intervals are off the median by over 1.5 x, the samples are not one rate with some dropped,
+// and neither --allow-gaps nor --gaps split can make one equally spaced record of them.
+io::TimingReport checked_timing(std::span<const double> time_s, const std::string& source,
+                                const io::LineMap* lines, bool allow_gaps) {
+  const io::TimingReport report = io::analyze_timing(time_s, source, lines);
+  // Off-rate intervals: gaps (> 1.5 median) and intervals shorter than median / 1.5 (a faster
+  // stretch when the median is the slower rate).
+  std::size_t off_rate = report.gaps.size();
+  for (std::size_t i = 1; i < time_s.size(); ++i) {
+    const double dt = time_s[i] - time_s[i - 1];
+    if (dt > 0.0 && dt * 1.5 < report.median_dt_s) ++off_rate;
+  }
+  if (off_rate > 10 && off_rate * 20 > report.n_samples) {
+    auto rate_of = [&](std::size_t begin, std::size_t end) {
+      std::vector<double> dt;
+      for (std::size_t i = begin + 1; i < end; ++i) dt.push_back(time_s[i] - time_s[i - 1]);
+      std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
+      return 1.0 / dt[dt.size() / 2];
+    };
+    const std::size_t tenth = std::max<std::size_t>(time_s.size() / 10, 2);
+    throw InputError(fmt::format(
+        "{}: mixed sample rates: {} of {} intervals differ from the median {:.6g} s by more than 1.5 x "
+        "({:.6g} Hz over the first tenth of the record, {:.6g} Hz over the last); fix: analyse each "
+        "rate separately (split the file where the rate changes); imunoise never resamples",
+        source, off_rate, report.n_samples - 1, report.median_dt_s, rate_of(0, tenth),
+        rate_of(time_s.size() - tenth, time_s.size())));
+  }
+  return io::check_timing(time_s, source, lines, allow_gaps);
 }
 
 // "30", "30s", "5min", "1.5h" -> seconds.
@@ -370,7 +402,7 @@ void load_text(const InputOptions& options, PhaseRecord& record, double to_si) {
                                 ? io::read_text_stream(std::cin, record.source, read)
                                 : io::read_text_file(options.file, read);
   if (read.time_column) {
-    record.timing = io::check_timing(columns.time_s, record.source, &columns.lines, gaps_allowed(options));
+    record.timing = checked_timing(columns.time_s, record.source, &columns.lines, gaps_allowed(options));
     if (record.rate_hz > 0 && std::abs(record.timing->rate_hz / record.rate_hz - 1.0) > 0.01) {
       throw InputError(record.source + ": --rate " + fmt::format("{}", record.rate_hz) +
                        " Hz disagrees with the time column (" +
@@ -440,7 +472,7 @@ void load_container(const InputOptions& options, PhaseRecord& record) {
   }
   record.rate_unit = record.kind == InputKind::rate || !record.unit_given ? unit : derivative_unit(unit);
   if (!recording.time_s.empty()) {
-    record.timing = io::check_timing(recording.time_s, record.source, nullptr, gaps_allowed(options));
+    record.timing = checked_timing(recording.time_s, record.source, nullptr, gaps_allowed(options));
     if (record.rate_hz > 0 && std::abs(record.timing->rate_hz / record.rate_hz - 1.0) > 0.01) {
       throw InputError(record.source + ": --rate " + fmt::format("{}", record.rate_hz) +
                        " Hz disagrees with the file's timestamps (" +

@@ -325,3 +325,29 @@ TEST_F(Containers, CliReadsBagMcapAndHdf5AndExitsOneOnAWrongTopic) {
 
 }  // namespace
 }  // namespace imunoise::io
+
+namespace imunoise::io {
+namespace {
+
+TEST(MixedRates, EurocWithARateChangeIsRefusedNamingTheFileAndBothRates) {
+  test::TempDir dir;
+  std::string text = "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
+                     "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n";
+  long long t = 1403636579758555392LL;
+  for (int i = 0; i < 4000; ++i) {
+    t += i < 2000 ? 5'000'000 : 10'000'000;  // 200 Hz, then 100 Hz
+    text += std::to_string(t) + ",0.001,0.002,0.003,0.1,0.2,9.8\n";
+  }
+  const auto path = dir.write("mixed.csv", text);
+  const auto r = run_cli({"dev", path.string(), "--column", "gyro_x"}, dir);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("mixed.csv: mixed sample rates"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("200 Hz over the first tenth"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("100 Hz over the last"), std::string::npos) << r.err;
+  // Splitting at gaps cannot help either: a split record would pool two sample intervals.
+  const auto split = run_cli({"dev", path.string(), "--column", "gyro_x", "--gaps", "split"}, dir);
+  EXPECT_EQ(split.exit_code, 1);
+}
+
+}  // namespace
+}  // namespace imunoise::io
