@@ -7,6 +7,7 @@
 #include "byte_cursor.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/io/imu_containers.hpp"
+#include "imunoise/io/text_reader.hpp"
 #include "imunoise/io/timestamps.hpp"
 
 namespace imunoise::io {
@@ -106,6 +107,47 @@ std::string describe_streams(const std::vector<StreamInfo>& streams, std::string
            std::to_string(s.count) + (noun == "dataset" ? " rows\n" : " messages\n");
   }
   return out;
+}
+
+Recording read_text_recording(const std::filesystem::path& path, std::vector<std::string> columns,
+                              const std::string& time_column) {
+  Recording r;
+  r.source = path.string();
+  r.format = RecordingFormat::text;
+  TextReadOptions options;
+  if (!time_column.empty()) options.time_column = parse_column_selector(time_column);
+  if (columns.empty()) {
+    // Learn the layout from the first column, then read every column.
+    TextReadOptions first;
+    first.column = std::size_t{0};
+    const TextColumns probe = read_text_file(path, first);
+    std::optional<std::size_t> time_index;
+    if (options.time_column) {
+      if (const auto* index = std::get_if<std::size_t>(&*options.time_column)) {
+        time_index = *index;
+      } else {
+        const auto& name = std::get<std::string>(*options.time_column);
+        const auto it = std::find(probe.header.begin(), probe.header.end(), name);
+        if (it != probe.header.end()) time_index = static_cast<std::size_t>(it - probe.header.begin());
+      }
+    }
+    for (std::size_t k = 0; k < probe.column_count; ++k) {
+      if (k != time_index) columns.push_back(std::to_string(k));
+    }
+  }
+  for (const auto& name : columns) {
+    options.column = parse_column_selector(name);
+    TextColumns text = read_text_file(path, options);
+    if (r.channels.empty() && options.time_column) {
+      r.time_s = std::move(text.time_s);
+      r.time_origin = text.time_origin + " " + text.time_unit.name;
+    }
+    const std::string channel_name =
+        text.header.empty() ? "column " + std::to_string(text.value_column) : text.header[text.value_column];
+    r.channels.push_back(Channel{channel_name, std::nullopt, std::move(text.values)});
+  }
+  if (r.channels.empty()) throw InputError(r.source + ": no value columns besides the time column; fix: add one");
+  return r;
 }
 
 namespace detail {

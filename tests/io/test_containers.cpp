@@ -351,3 +351,25 @@ TEST(MixedRates, EurocWithARateChangeIsRefusedNamingTheFileAndBothRates) {
 
 }  // namespace
 }  // namespace imunoise::io
+
+namespace imunoise::io {
+namespace {
+
+TEST(TextRecording, ColumnsBecomeNamedChannelsWithTheTimeColumn) {
+  test::TempDir dir;
+  const auto path = dir.write("imu.csv", "t,gx,gy\n0.00,1.5,-2\n0.01,2.5,-3\n0.02,3.5,-4\n");
+  const Recording all = read_text_recording(path, {}, "t");
+  EXPECT_EQ(all.format, RecordingFormat::text);
+  ASSERT_EQ(all.channel_list(), "gx, gy");
+  EXPECT_EQ(all.channel("gy").values, (std::vector<double>{-2, -3, -4}));
+  ASSERT_EQ(all.time_s.size(), 3u);
+  EXPECT_DOUBLE_EQ(all.time_s[2], 0.02);
+  EXPECT_FALSE(all.channel("gx").unit.has_value());
+  const Recording one = read_text_recording(path, {"gy"});
+  EXPECT_EQ(one.channel_list(), "gy");
+  EXPECT_TRUE(one.time_s.empty());
+  expect_input_error([&] { (void)read_text_recording(path, {"gz"}); }, {"imu.csv", "gz"});
+}
+
+}  // namespace
+}  // namespace imunoise::io

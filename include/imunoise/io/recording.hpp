@@ -71,4 +71,11 @@ std::optional<RecordingFormat> detect_container(const std::filesystem::path& pat
 /// dataset (listing what the file holds), corrupt or truncated data.
 Recording read_recording(const std::filesystem::path& path, const RecordingOptions& options);
 
+/// A text file as a Recording: one channel per selected column (named by the header, else
+/// "column K"), no unit (text files do not state one), and the time column when given (as
+/// text_reader.hpp reads it). Reads through the text reader's public API, one pass per column.
+/// Empty `columns`: every column except the time column. Throws InputError as the text reader.
+Recording read_text_recording(const std::filesystem::path& path, std::vector<std::string> columns,
+                              const std::string& time_column = "");
+
 }  // namespace imunoise::io
