@@ -93,7 +93,7 @@ std::string format_json(const PhaseRecord& record, const std::vector<Curve>& cur
                                       {"ratios", curve.theobr_factor->ratios}};
     }
     if (!record.format.empty()) {
-      object["source"] = {{"file", record.source}, {"format", record.format}, {"stream", record.stream},
+      object["recording"] = {{"format", record.format}, {"stream", record.stream},
                           {"channel", record.channel}};
     }
     if (!record.preprocessing.empty()) object["preprocessing"] = record.preprocessing;

@@ -163,11 +163,19 @@ void run_fit(FitOptionsCli& options) {
   nlohmann::json json = fit::report_json(record_info(record), fo, result);
   options.spec.force = options.output.force;
   json["spec_comparison"] = run_spec_exports(options.spec, result.coefficients, record.rate_hz);
+  // Where the record came from and what preprocessing removed (issue 16).
+  if (!record.channel.empty()) {
+    json["recording"] = {{"format", record.format}, {"stream", record.stream},
+                      {"channel", record.channel}};
+  }
+  if (!record.preprocessing.empty()) json["preprocessing"] = record.preprocessing;
+  std::string preprocessing_lines;
+  for (const auto& line : record.preprocessing) preprocessing_lines += "# preprocessing: " + line + "\n";
   std::string text;
   if (options.format == "json") {
     text = json.dump(1) + "\n";
   } else {
-    text = to_table(record, fo, result) + format_spec_table(json["spec_comparison"]);
+    text = preprocessing_lines + to_table(record, fo, result) + format_spec_table(json["spec_comparison"]);
     if (!text.empty() && text.back() != '\n') text += '\n';
   }
   write_output(options.output, text);

@@ -161,3 +161,19 @@ TEST_F(PreprocessCli, TemperatureBinsReportedPerBin) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST_F(PreprocessCli, FitReportsPreprocessingAndKeepsItsSourceField) {
+  const auto file = write("fit.csv", 60'000, warm_up_and_drift);
+  std::string command = std::string(IMUNOISE_CLI_PATH) + " fit '" + file.string() +
+                        "' --time-column t --column gx --units rad/s --skip 60 --detrend linear --format json >" +
+                        (dir_ / "out").string() + " 2>" + (dir_ / "err").string();
+  ASSERT_EQ(std::system(command.c_str()), 0) << slurp(dir_ / "err");
+  const auto j = nlohmann::json::parse(slurp(dir_ / "out"));
+  EXPECT_EQ(j.at("source").get<std::string>(), file.string());
+  ASSERT_EQ(j.at("preprocessing").size(), 2u);
+  EXPECT_EQ(j.at("preprocessing")[0].get<std::string>(), "skip: removed the first 60 s (6000 samples)");
+}
+
+}  // namespace
