@@ -12,6 +12,7 @@ packages=(
   libboost-dev libeigen3-dev libyaml-cpp-dev
   clang libclang-rt-14-dev
   python3-dev python3-numpy python3-pytest pybind11-dev
+  libhdf5-dev libbz2-dev liblz4-dev libzstd-dev python3-h5py python3-rosbag python3-sensor-msgs
 )
 
 missing=()
@@ -27,5 +28,7 @@ if ((${#missing[@]})); then
 fi
 
 cd "$here"
+# The MCAP reader's tests write files with the reference TypeScript writer (node 20 + npm).
+if command -v npm >/dev/null; then (cd tests/io/mcap_writer && npm ci --no-audit --no-fund --loglevel=error); fi
 cmake --preset "$preset" >/dev/null
 cmake --build --preset "$preset" -j "$(nproc)"

@@ -12,6 +12,7 @@
 #include "imunoise/confidence/fill_confidence.hpp"
 #include "imunoise/deviation.hpp"
 #include "imunoise/error.hpp"
+#include "imunoise/preprocess/preprocess.hpp"
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
 #include "imunoise/total.hpp"
@@ -91,6 +92,28 @@ std::string format_json(const PhaseRecord& record, const std::vector<Curve>& cur
       object["theobr_bias_factor"] = {{"avar_over_theo1", curve.theobr_factor->avar_over_theo1},
                                       {"ratios", curve.theobr_factor->ratios}};
     }
+    if (!record.format.empty()) {
+      object["recording"] = {{"format", record.format}, {"stream", record.stream},
+                          {"channel", record.channel}};
+    }
+    if (!record.preprocessing.empty()) object["preprocessing"] = record.preprocessing;
+    if (record.davar) {
+      const auto& d = *record.davar;
+      object["davar"] = {{"window_s", d.window_s}, {"step_s", d.step_s}, {"window_start_s", d.window_start_s},
+                         {"tau_s", d.tau_s}, {"avar_si", d.avar}, {"reference_avar_si", d.reference_avar},
+                         {"window_flagged", d.window_flagged}, {"stationary", d.stationary},
+                         {"change_times_s", d.change_times_s}, {"suggested_skip_s", d.suggested_skip_s}};
+    }
+    if (!record.temperature_bins.empty()) {
+      auto bins = nlohmann::json::array();
+      for (const auto& b : record.temperature_bins) {
+        bins.push_back({{"low", b.low}, {"high", b.high}, {"samples", b.samples}, {"runs", b.segments},
+                        {"mean_temperature", b.mean_temperature}, {"bias_si", b.bias_si},
+                        {"bias_stderr_si", b.bias_stderr_si}, {"N_si", json_number(b.random_walk_si)},
+                        {"N_tau_s", b.random_walk_tau_s}, {"B_si", json_number(b.bias_instability_si)}});
+      }
+      object["temperature_bins"] = std::move(bins);
+    }
     if (record.timing) {
       const auto& t = *record.timing;
       object["timing"] = {{"rate_hz", t.rate_hz}, {"median_dt_s", t.median_dt_s},
@@ -135,8 +158,13 @@ std::string format_table(const PhaseRecord& record, const std::vector<Curve>& cu
                        t.rate_hz, t.median_dt_s, 100 * t.jitter_rel_std, 100 * t.jitter_rel_max,
                        t.gaps.size(), t.missing_samples);
   }
+  if (!record.channel.empty()) {
+    out += fmt::format("# {}: {}{}{}\n", record.format, record.stream.empty() ? "" : record.stream + " ",
+                       "channel ", record.channel);
+  }
+  for (const auto& line : record.preprocessing) out += "# preprocessing: " + line + "\n";
   for (const auto& curve : curves) {
-    const std::string bounds = curve.confidence.empty()
+    const std::string bounds = curve.confidence.empty() && !(curve.points.size() && std::isfinite(curve.points[0].ci_low))
                                    ? std::string("no confidence bounds (--no-ci)")
                                    : fmt::format("{:.1f}% confidence", 100 * level);
     out += fmt::format("\n{} [{}], {}{}\n", curve.label, curve.unit, bounds,
@@ -223,11 +251,25 @@ void run_dev(const DevOptionsCli& options) {
           "ThêoBR variance = Theo1 variance x {:.6g} (Avar/Theo1 averaged over {} taus, {} rule){}{}",
           kf.avar_over_theo1, kf.ratios, options.theobr_ratios, skip_note.empty() ? "" : "; ",
           skip_note);
+    } else if (!factors.empty() && record.segments.size() > 1) {
+      // A split record (--gaps split, --outliers reject): the segments' Allan sums are pooled,
+      // with chi-squared bounds from the summed edf (preprocess.hpp).
+      if (estimator != Estimator::oadev) {
+        throw InputError(record.source + ": the record is split into " + std::to_string(record.segments.size()) +
+                         " segments, whose sums are pooled for oadev only; fix: --estimator oadev, or "
+                         "drop --gaps split / --outliers reject");
+      }
+      points = preprocess::pooled_oadev(record.rate_si, record.segments, tau0_s, factors, options.ci_level);
+      if (options.no_ci) {
+        for (auto& p : points) p.ci_low = p.ci_high = p.edf = std::numeric_limits<double>::quiet_NaN();
+      }
+      skip_note = "pooled over " + std::to_string(record.segments.size()) +
+                  " segments; bounds from the summed simple edf (n/m - 1 per segment)";
     } else if (!factors.empty()) {
       points = compute_deviation(estimator, record.phase_si, tau0_s, factors, {options.threads});
     }
     std::vector<PointConfidence> confidence;
-    if (!options.no_ci) {
+    if (!options.no_ci && record.segments.size() <= 1) {
       confidence = fill_confidence(points, estimator, record.phase_si, options.ci_level, forced_alpha);
     }
     // SI inside, the input's unit at the edge: tdev, ttotdev, mtie, tierms are angles.

@@ -136,6 +136,11 @@ void run_fit(FitOptionsCli& options) {
   if (!fo.IsValid(&why)) throw InputError("fit options: " + why);
 
   const PhaseRecord record = load_phase(options.input);
+  if (record.segments.size() > 1) {
+    throw InputError(record.source + ": fit needs one contiguous record, but --gaps split / --outliers reject "
+                     "split it into " + std::to_string(record.segments.size()) + " segments; fix: fit the longest "
+                     "gap-free stretch, or use --allow-gaps / --outliers report");
+  }
   const double tau0_s = 1.0 / record.rate_hz;
   auto warnings = fit::record_warnings(record.phase_si, tau0_s);
   if (fit::is_constant_record(record.phase_si, tau0_s)) {
@@ -158,11 +163,19 @@ void run_fit(FitOptionsCli& options) {
   nlohmann::json json = fit::report_json(record_info(record), fo, result);
   options.spec.force = options.output.force;
   json["spec_comparison"] = run_spec_exports(options.spec, result.coefficients, record.rate_hz);
+  // Where the record came from and what preprocessing removed (issue 16).
+  if (!record.channel.empty()) {
+    json["recording"] = {{"format", record.format}, {"stream", record.stream},
+                      {"channel", record.channel}};
+  }
+  if (!record.preprocessing.empty()) json["preprocessing"] = record.preprocessing;
+  std::string preprocessing_lines;
+  for (const auto& line : record.preprocessing) preprocessing_lines += "# preprocessing: " + line + "\n";
   std::string text;
   if (options.format == "json") {
     text = json.dump(1) + "\n";
   } else {
-    text = to_table(record, fo, result) + format_spec_table(json["spec_comparison"]);
+    text = preprocessing_lines + to_table(record, fo, result) + format_spec_table(json["spec_comparison"]);
     if (!text.empty() && text.back() != '\n') text += '\n';
   }
   write_output(options.output, text);
