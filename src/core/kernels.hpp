@@ -12,6 +12,13 @@ double sum_sq_second_difference(const double* x, std::size_t m, std::size_t coun
 /// sum_{k<count} (x[k+3m] - 3 x[k+2m] + 3 x[k+m] - x[k])^2
 double sum_sq_third_difference(const double* x, std::size_t m, std::size_t count);
 
+/// Modified-Allan window sums: with e_i = x[i+2m] - 2 x[i+m] + x[i] and the window
+/// v_j = sum_{i=j}^{j+m-1} e_i, returns sum_{j<count} v_j^2 (count >= 1). Reads x[0 .. count-2+3m].
+/// v_0 is summed directly (O(m)); v_{j+1} = v_j + (e_{j+m} - e_j) then runs eight windows per
+/// step as a vector prefix sum. Each e is formed as (x[i+2m] - 2 x[i+m]) + x[i], exact for
+/// slowly varying phase, so a pure rate ramp (constant e) leaves every increment exactly zero.
+double sum_sq_window_second_difference(const double* x, std::size_t m, std::size_t count);
+
 /// The mtot/htot kernel (total.hpp) for `count` consecutive 3m-point subsequences of a sequence
 /// u, given its prefix sums ul[i] = sum_{k<i} (u[k] - c - s k) for any c, s (a constant and a
 /// linear trend in u leave the result unchanged; removing the local ones keeps ul small):

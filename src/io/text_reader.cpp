@@ -14,6 +14,7 @@
 
 #include "imunoise/error.hpp"
 #include "imunoise/io/timestamps.hpp"
+#include "../core/parallel.hpp"  // the library's fork-join helper
 
 namespace imunoise::io {
 namespace {
@@ -192,6 +193,15 @@ class LineSplitter {
     std::size_t pos = 0;
     while (pos < size) {
       if (line_end_ == LineEnd::unknown && !decide_line_end(data, pos, size, at_end)) break;
+      if (line_end_ == LineEnd::lf && on_line_.bulk_ready()) {
+        // Every complete line left in the block at once (the parser may split them up).
+        const void* last = memrchr(data + pos, '\n', size - pos);
+        if (last == nullptr) break;
+        const auto end = static_cast<std::size_t>(static_cast<const char*>(last) - data) + 1;
+        on_line_.bulk(data + pos, end - pos);
+        pos = end;
+        continue;
+      }
       const char terminator = line_end_ == LineEnd::cr ? '\r' : '\n';
       const void* hit = std::memchr(data + pos, terminator, size - pos);
       if (hit == nullptr) break;
@@ -251,6 +261,115 @@ void split_blocks(Read&& read, std::size_t block_bytes, OnLine& on_line) {
   }
 }
 
+// --- bulk row parser -----------------------------------------------------------------------------
+// Plain rows only: cells that are numbers, separated as the first row was, blanks around them.
+// Anything else is left to the line-by-line parser, so this parser never has to judge an error.
+
+struct RowLayout {
+  Separator separator;
+  std::size_t columns;
+  std::size_t value_column;
+  std::optional<std::size_t> time_column;
+};
+
+struct PlainRows {
+  std::vector<double> values;
+  std::vector<SplitTime> times;
+  std::string first_time;  ///< the first time cell as written
+  std::size_t rows = 0;    ///< rows parsed = lines consumed
+};
+
+inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+// End of a number of the form [+-] digits [. digits] [(e|E) [+-] digits] (a digit in the
+// mantissa required) starting at p, or nullptr. Every text of this form is a number for
+// parse_number (fast_float), so a cell that passes here is one the line parser accepts.
+inline const char* skip_number(const char* p) {
+  if (*p == '-' || (*p == '+' && (is_digit(p[1]) || p[1] == '.'))) ++p;
+  std::size_t digits = 0;
+  while (is_digit(*p)) ++p, ++digits;
+  if (*p == '.') {
+    ++p;
+    while (is_digit(*p)) ++p, ++digits;
+  }
+  if (digits == 0) return nullptr;
+  if (*p == 'e' || *p == 'E') {
+    const char* q = p + 1;
+    if (*q == '+' || *q == '-') ++q;
+    if (!is_digit(*q)) return nullptr;
+    while (is_digit(*q)) ++q;
+    p = q;
+  }
+  return p;
+}
+
+// Parses the plain rows of [begin, end) (complete lines, the last ending in '\n') into `out` and
+// returns where the first other line starts (end when all were plain). A line that is not plain
+// stores nothing.
+std::size_t parse_plain_rows(const char* begin, const char* end, const RowLayout& layout,
+                             PlainRows& out) {
+  const bool words = layout.separator == Separator::whitespace;
+  const char sep = separator_char(layout.separator);
+  // Blanks the line parser trims around a cell; a tab is the separator in tab-separated files.
+  const auto blank = [sep](char c) { return c == ' ' || (c == '\t' && sep != '\t'); };
+  const std::size_t last_column = layout.columns - 1;
+  const std::size_t time_column = layout.time_column ? *layout.time_column : layout.columns;
+  out.values.reserve(out.values.size() + static_cast<std::size_t>(end - begin) / 16);
+  const char* p = begin;
+  while (p < end) {
+    const char* q = p;
+    while (blank(*q)) ++q;
+    double value = 0.0;
+    SplitTime time;
+    const char* time_begin = nullptr;
+    const char* time_end = nullptr;
+    bool plain = true;
+    for (std::size_t column = 0; plain; ++column) {
+      if (column == layout.value_column) {
+        const char* first = q;
+        if (*first == '+' && (is_digit(first[1]) || first[1] == '.')) ++first;
+        const auto result = fast_float::from_chars(first, end, value);
+        plain = result.ec == std::errc() && result.ptr != first && std::isfinite(value);
+        q = result.ptr;
+      } else if (column == time_column) {
+        const char* stop = q;
+        while (!blank(*stop) && *stop != sep && *stop != '\r' && *stop != '\n') ++stop;
+        const auto parsed = parse_split_time(std::string_view(q, static_cast<std::size_t>(stop - q)));
+        plain = parsed && is_finite(*parsed);
+        if (plain) time = *parsed;
+        time_begin = q;
+        time_end = stop;
+        q = stop;
+      } else {
+        q = skip_number(q);
+        plain = q != nullptr;
+      }
+      if (!plain) break;
+      const char* after = q;
+      while (blank(*q)) ++q;
+      if (column == last_column) break;
+      if (words) {
+        plain = q != after;  // cells are separated by at least one blank
+      } else {
+        plain = *q == sep;
+        ++q;
+        while (blank(*q)) ++q;
+      }
+    }
+    if (!plain) break;
+    if (*q == '\r') ++q;
+    if (*q != '\n') break;
+    out.values.push_back(value);
+    if (time_begin != nullptr) {
+      if (out.times.empty()) out.first_time.assign(time_begin, time_end);
+      out.times.push_back(time);
+    }
+    ++out.rows;
+    p = q + 1;
+  }
+  return static_cast<std::size_t>(p - begin);
+}
+
 // The state machine over lines: first content line (header or data), then data rows.
 class TextParser {
  public:
@@ -268,6 +387,47 @@ class TextParser {
       first_content_line(content);
     } else {
       data_row(content);
+    }
+  }
+
+  /// Whether whole blocks may go to bulk(): the first row has fixed the layout.
+  [[nodiscard]] bool bulk_ready() const { return options_.bulk_rows && out_.column_count != 0; }
+
+  /// Complete LF-terminated lines (size > 0, data[size - 1] == '\n'): split at line ends into
+  /// one range per thread, parsed by parse_plain_rows side by side, and taken in file order;
+  /// a line the row parser leaves goes through operator() with its exact line number.
+  void bulk(const char* data, std::size_t size) {
+    const RowLayout layout{out_.separator, out_.column_count, out_.value_column, out_.time_column};
+    const unsigned threads = detail::resolve_threads(options_.threads);
+    const std::size_t parts = std::clamp<std::size_t>(size / kMinPartBytes, 1, threads);
+    std::vector<std::size_t> cuts(parts + 1, size);
+    cuts[0] = 0;
+    for (std::size_t w = 1; w < parts; ++w) {
+      const std::size_t from = std::max(cuts[w - 1], size * w / parts);
+      const void* newline = std::memchr(data + from, '\n', size - from);
+      cuts[w] = newline == nullptr ? size
+                                   : static_cast<std::size_t>(static_cast<const char*>(newline) - data) + 1;
+    }
+    std::vector<PlainRows> results(parts);
+    std::vector<std::size_t> stops(parts);
+    detail::parallel_for(parts, threads, [&](std::size_t w) {
+      stops[w] = parse_plain_rows(data + cuts[w], data + cuts[w + 1], layout, results[w]);
+    });
+    for (std::size_t w = 0; w < parts; ++w) {
+      take(results[w]);
+      results[w] = PlainRows{};  // release the memory before the next part grows ours
+      const char* p = data + cuts[w] + stops[w];
+      const char* const end = data + cuts[w + 1];
+      while (p < end) {
+        const char* newline = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
+        std::string_view line(p, static_cast<std::size_t>(newline - p));
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        (*this)(line);
+        p = newline + 1;
+        PlainRows more;
+        p += parse_plain_rows(p, end, layout, more);
+        take(more);
+      }
     }
   }
 
@@ -495,6 +655,23 @@ class TextParser {
              std::to_string(out_.header_line != 0 ? out_.header_line : out_.first_data_line) + ")",
          "give every row the same number of fields, or comment the row out with '#'");
   }
+
+  // Rows from parse_plain_rows that follow the lines read so far.
+  void take(PlainRows& rows) {
+    if (rows.rows == 0) return;
+    if (out_.first_data_line == 0) out_.first_data_line = line_number_ + 1;
+    out_.lines.add(rows_, line_number_ + 1);
+    out_.values.insert(out_.values.end(), rows.values.begin(), rows.values.end());
+    if (out_.time_column) {
+      if (times_.empty()) out_.time_origin = rows.first_time;
+      times_.insert(times_.end(), rows.times.begin(), rows.times.end());
+    }
+    line_number_ += rows.rows;
+    rows_ += rows.rows;
+  }
+
+  // Smallest byte range worth a thread of its own.
+  static constexpr std::size_t kMinPartBytes = std::size_t{1} << 18;
 
   TextReadOptions options_;
   TextColumns out_;
