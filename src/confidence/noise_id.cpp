@@ -31,16 +31,17 @@ int family_d(Estimator estimator) {
 
 int lowest_alpha(int d) { return std::max(kMinNoiseAlpha, 2 - 2 * d); }
 
-// Identification reads at most the first 2^20 decimated points: the lag-1 estimate's
-// standard error there is ~1/sqrt(2^20) = 1e-3, far inside the 1/4 decision margin, and a
+// Identification reads at most the first 2^18 decimated points: the lag-1 estimate's
+// standard error there is ~1/sqrt(2^18) = 2e-3, far inside the 1/4 decision margin (and a
+// hundred times inside the 0.2 between the nearest model values at m >= 2), and a
 // record of 1e8 samples is neither copied nor read in full for every tau.
-constexpr std::size_t kMaxIdentificationPoints = std::size_t{1} << 20;
+constexpr std::size_t kMaxIdentificationPoints = std::size_t{1} << 18;
 
 // Lag-1 autocorrelation about the mean of z[0, n) (two passes: mean, then centred sums). Four
 // interleaved partial sums per quantity: the loop runs at the load rate instead of waiting on
 // one add chain, and the result does not depend on threads or CPU. Doubles suffice: the
 // statistic only has to fall on the right side of boundaries ~0.25 apart, and over at most
-// 2^20 points its rounding (~1e-13) is ten orders below its own scatter (~1e-3).
+// 2^18 points its rounding (~1e-13) is ten orders below its own scatter (~2e-3).
 double lag1_of(const double* z, std::size_t n) {
   if (n < 3) return kNaN;
   double m0 = 0.0, m1 = 0.0, m2 = 0.0, m3 = 0.0;
@@ -256,12 +257,18 @@ double rn_ratio(std::span<const double> phase, std::size_t m) {
   std::vector<double> modified_parts(n_blocks, 0.0);
   const double inv_m2 = 1.0 / (static_cast<double>(m) * static_cast<double>(m));
   const double* x = phase.data();
+  // One pass: the window recursion reads e_k for k in [begin, w_end - 1) anyway and returns
+  // their squares too; e_{w_end - 1} and the last m - 1 terms past the last window are added
+  // directly.
   detail::parallel_for(n_blocks, 0, [&](std::size_t b) {
     const std::size_t begin = b * block;
-    allan_parts[b] = detail::sum_sq_second_difference(x + begin, m, std::min(count, begin + block) - begin);
     const std::size_t w_end = std::min(windows, begin + block);
     if (begin >= w_end) return;
-    modified_parts[b] = detail::sum_sq_window_second_difference(x + begin, m, w_end - begin) * inv_m2;
+    double squares = 0.0;
+    modified_parts[b] =
+        detail::sum_sq_window_second_difference(x + begin, m, w_end - begin, &squares) * inv_m2;
+    const std::size_t e_end = w_end == windows ? count : w_end;
+    allan_parts[b] = squares + detail::sum_sq_second_difference(x + w_end - 1, m, e_end - (w_end - 1));
   });
   long double allan = 0.0L;
   long double modified = 0.0L;

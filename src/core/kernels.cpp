@@ -105,7 +105,7 @@ __attribute__((always_inline)) inline Vec8 broadcast_last(Vec8 v) {
 }  // namespace
 
 IMUNOISE_CLONES double sum_sq_window_second_difference(const double* x, std::size_t m,
-                                                       std::size_t count) {
+                                                       std::size_t count, double* second_sum) {
   const double* x0 = x;
   const double* x1 = x + m;
   const double* x2 = x + 2 * m;
@@ -120,26 +120,34 @@ IMUNOISE_CLONES double sum_sq_window_second_difference(const double* x, std::siz
   // Windows 1 .. count-1: v_{k+1} = v_k + inc_k, inc_k = e_{k+m} - e_k, k = 0 .. count-2.
   const std::size_t steps = count - 1;
   Vec8 acc[2] = {};
+  Vec8 acc_e[2] = {};
   Vec8 carry = {v, v, v, v, v, v, v, v};
   std::size_t k = 0;
   for (; k + 2 * kLanes <= steps; k += 2 * kLanes) {
     for (std::size_t u = 0; u < 2; ++u) {
       const std::size_t j = k + u * kLanes;
       const Vec8 a1 = load(x1 + j), a2 = load(x2 + j);
-      const Vec8 inc = ((load(x3 + j) - 2.0 * a2) + a1) - ((a2 - 2.0 * a1) + load(x0 + j));
+      const Vec8 e = (a2 - 2.0 * a1) + load(x0 + j);
+      const Vec8 inc = ((load(x3 + j) - 2.0 * a2) + a1) - e;
       const Vec8 prefix = inclusive_scan(inc);
       const Vec8 w = carry + prefix;
       acc[u] += w * w;
+      acc_e[u] += e * e;
       carry += broadcast_last(prefix);
     }
   }
   const Vec8 s = acc[0] + acc[1];
   sum += ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+  const Vec8 se = acc_e[0] + acc_e[1];
+  double e_sum = ((se[0] + se[1]) + (se[2] + se[3])) + ((se[4] + se[5]) + (se[6] + se[7]));
   v = carry[0];
   for (; k < steps; ++k) {
-    v += ((x3[k] - 2.0 * x2[k]) + x1[k]) - ((x2[k] - 2.0 * x1[k]) + x0[k]);
+    const double e = (x2[k] - 2.0 * x1[k]) + x0[k];
+    v += ((x3[k] - 2.0 * x2[k]) + x1[k]) - e;
     sum += v * v;
+    e_sum += e * e;
   }
+  if (second_sum != nullptr) *second_sum = e_sum;
   return sum;
 }
 

@@ -17,7 +17,10 @@ double sum_sq_third_difference(const double* x, std::size_t m, std::size_t count
 /// v_0 is summed directly (O(m)); v_{j+1} = v_j + (e_{j+m} - e_j) then runs eight windows per
 /// step as a vector prefix sum. Each e is formed as (x[i+2m] - 2 x[i+m]) + x[i], exact for
 /// slowly varying phase, so a pure rate ramp (constant e) leaves every increment exactly zero.
-double sum_sq_window_second_difference(const double* x, std::size_t m, std::size_t count);
+/// Also returns, in *second_sum when given, sum_{k<count-1} e_k^2 (the overlapping Allan terms
+/// the recursion reads anyway: R(n) in noise_id.cpp needs both sums from one pass).
+double sum_sq_window_second_difference(const double* x, std::size_t m, std::size_t count,
+                                       double* second_sum = nullptr);
 
 /// The mtot/htot kernel (total.hpp) for `count` consecutive 3m-point subsequences of a sequence
 /// u, given its prefix sums ul[i] = sum_{k<i} (u[k] - c - s k) for any c, s (a constant and a
