@@ -4,6 +4,7 @@
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <istream>
@@ -277,20 +278,44 @@ struct PlainRows {
   std::vector<SplitTime> times;
   std::string first_time;  ///< the first time cell as written
   std::size_t rows = 0;    ///< rows parsed = lines consumed
+  void clear() {
+    values.clear();
+    times.clear();
+    first_time.clear();
+    rows = 0;
+  }
 };
 
 inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
+// Skips a run of digits, eight bytes at a time while eight more bytes are in [p, end).
+inline const char* skip_digits(const char* p, const char* end) {
+  while (end - p >= 8) {
+    std::uint64_t word;
+    std::memcpy(&word, p, 8);
+    // All eight bytes are '0'..'9' when each high nibble is 3 and adding 6 keeps it 3.
+    if ((word & 0xF0F0F0F0F0F0F0F0u) != 0x3030303030303030u ||
+        ((word + 0x0606060606060606u) & 0xF0F0F0F0F0F0F0F0u) != 0x3030303030303030u) {
+      break;
+    }
+    p += 8;
+  }
+  while (is_digit(*p)) ++p;
+  return p;
+}
+
 // End of a number of the form [+-] digits [. digits] [(e|E) [+-] digits] (a digit in the
 // mantissa required) starting at p, or nullptr. Every text of this form is a number for
 // parse_number (fast_float), so a cell that passes here is one the line parser accepts.
-inline const char* skip_number(const char* p) {
+inline const char* skip_number(const char* p, const char* end) {
   if (*p == '-' || (*p == '+' && (is_digit(p[1]) || p[1] == '.'))) ++p;
-  std::size_t digits = 0;
-  while (is_digit(*p)) ++p, ++digits;
+  const char* mantissa = p;
+  p = skip_digits(p, end);
+  std::size_t digits = static_cast<std::size_t>(p - mantissa);
   if (*p == '.') {
-    ++p;
-    while (is_digit(*p)) ++p, ++digits;
+    const char* fraction = ++p;
+    p = skip_digits(p, end);
+    digits += static_cast<std::size_t>(p - fraction);
   }
   if (digits == 0) return nullptr;
   if (*p == 'e' || *p == 'E') {
@@ -301,6 +326,76 @@ inline const char* skip_number(const char* p) {
     p = q;
   }
   return p;
+}
+
+// A decimal number of the skip_number form, scanned once: its end, and when it is simple
+// enough its exact value by Clinger's fast path (at most 19 digits whose value is below 2^53,
+// |power of ten| <= 22: the integer and the power are exact doubles, so one multiplication or
+// division rounds once, correctly, to the same bits as strtod and fast_float). `exact` is false
+// when the caller must convert the text with fast_float instead.
+struct Scanned {
+  const char* end = nullptr;  // nullptr: not a number of that form
+  double value = 0.0;
+  bool exact = false;
+};
+
+inline Scanned scan_decimal(const char* p, const char* end) {
+  static constexpr double kPowers[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                       1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                       1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  Scanned out;
+  bool negative = false;
+  if (*p == '-') {
+    negative = true;
+    ++p;
+  } else if (*p == '+' && (is_digit(p[1]) || p[1] == '.')) {
+    ++p;
+  }
+  std::uint64_t mantissa = 0;
+  std::size_t digits = 0;
+  while (is_digit(*p)) {
+    mantissa = mantissa * 10 + static_cast<std::uint64_t>(*p - '0');
+    ++p;
+    ++digits;
+  }
+  long long exponent = 0;
+  std::size_t total = digits;
+  if (*p == '.') {
+    ++p;
+    const char* fraction = p;
+    while (is_digit(*p)) {
+      mantissa = mantissa * 10 + static_cast<std::uint64_t>(*p - '0');
+      ++p;
+    }
+    const auto fraction_digits = static_cast<std::size_t>(p - fraction);
+    total += fraction_digits;
+    exponent = -static_cast<long long>(fraction_digits);
+  }
+  if (total == 0) return out;
+  if (*p == 'e' || *p == 'E') {
+    const char* q = p + 1;
+    bool negative_exponent = false;
+    if (*q == '+' || *q == '-') negative_exponent = *q++ == '-';
+    if (!is_digit(*q)) return out;
+    long long written = 0;
+    const char* first = q;
+    while (is_digit(*q)) {
+      if (q - first < 6) written = written * 10 + (*q - '0');
+      ++q;
+    }
+    if (q - first >= 6) written = 1'000'000;  // far outside the fast path either way
+    exponent += negative_exponent ? -written : written;
+    p = q;
+  }
+  (void)end;
+  out.end = p;
+  if (total <= 19 && mantissa <= (std::uint64_t{1} << 53) && exponent >= -22 && exponent <= 22) {
+    const auto m = static_cast<double>(mantissa);
+    const double magnitude = exponent >= 0 ? m * kPowers[exponent] : m / kPowers[-exponent];
+    out.value = negative ? -magnitude : magnitude;
+    out.exact = true;
+  }
+  return out;
 }
 
 // Parses the plain rows of [begin, end) (complete lines, the last ending in '\n') into `out` and
@@ -314,7 +409,6 @@ std::size_t parse_plain_rows(const char* begin, const char* end, const RowLayout
   const auto blank = [sep](char c) { return c == ' ' || (c == '\t' && sep != '\t'); };
   const std::size_t last_column = layout.columns - 1;
   const std::size_t time_column = layout.time_column ? *layout.time_column : layout.columns;
-  out.values.reserve(out.values.size() + static_cast<std::size_t>(end - begin) / 16);
   const char* p = begin;
   while (p < end) {
     const char* q = p;
@@ -326,11 +420,19 @@ std::size_t parse_plain_rows(const char* begin, const char* end, const RowLayout
     bool plain = true;
     for (std::size_t column = 0; plain; ++column) {
       if (column == layout.value_column) {
-        const char* first = q;
-        if (*first == '+' && (is_digit(first[1]) || first[1] == '.')) ++first;
-        const auto result = fast_float::from_chars(first, end, value);
-        plain = result.ec == std::errc() && result.ptr != first && std::isfinite(value);
-        q = result.ptr;
+        const Scanned number = scan_decimal(q, end);
+        if (number.end == nullptr) {
+          plain = false;
+        } else if (number.exact) {
+          value = number.value;
+          q = number.end;
+        } else {  // the same text, converted as parse_number does
+          const char* first = q;
+          if (*first == '+') ++first;
+          const auto result = fast_float::from_chars(first, number.end, value);
+          plain = result.ec == std::errc() && result.ptr == number.end && std::isfinite(value);
+          q = number.end;
+        }
       } else if (column == time_column) {
         const char* stop = q;
         while (!blank(*stop) && *stop != sep && *stop != '\r' && *stop != '\n') ++stop;
@@ -341,7 +443,7 @@ std::size_t parse_plain_rows(const char* begin, const char* end, const RowLayout
         time_end = stop;
         q = stop;
       } else {
-        q = skip_number(q);
+        q = skip_number(q, end);
         plain = q != nullptr;
       }
       if (!plain) break;
@@ -408,14 +510,16 @@ class TextParser {
       cuts[w] = newline == nullptr ? size
                                    : static_cast<std::size_t>(static_cast<const char*>(newline) - data) + 1;
     }
-    std::vector<PlainRows> results(parts);
+    // The parts' buffers live as long as the parser: fresh ones for every block would cost
+    // the kernel's page zeroing again and again.
+    if (parts_.size() < parts) parts_.resize(parts);
     std::vector<std::size_t> stops(parts);
     detail::parallel_for(parts, threads, [&](std::size_t w) {
-      stops[w] = parse_plain_rows(data + cuts[w], data + cuts[w + 1], layout, results[w]);
+      parts_[w].clear();
+      stops[w] = parse_plain_rows(data + cuts[w], data + cuts[w + 1], layout, parts_[w]);
     });
     for (std::size_t w = 0; w < parts; ++w) {
-      take(results[w]);
-      results[w] = PlainRows{};  // release the memory before the next part grows ours
+      take(parts_[w]);
       const char* p = data + cuts[w] + stops[w];
       const char* const end = data + cuts[w + 1];
       while (p < end) {
@@ -424,9 +528,9 @@ class TextParser {
         if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
         (*this)(line);
         p = newline + 1;
-        PlainRows more;
-        p += parse_plain_rows(p, end, layout, more);
-        take(more);
+        parts_[w].clear();
+        p += parse_plain_rows(p, end, layout, parts_[w]);
+        take(parts_[w]);
       }
     }
   }
@@ -673,6 +777,7 @@ class TextParser {
   // Smallest byte range worth a thread of its own.
   static constexpr std::size_t kMinPartBytes = std::size_t{1} << 18;
 
+  std::vector<PlainRows> parts_;  // bulk(): one per byte range
   TextReadOptions options_;
   TextColumns out_;
   std::size_t line_number_ = 0;

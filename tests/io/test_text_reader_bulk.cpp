@@ -195,5 +195,53 @@ TEST(TextReaderBulk, ErrorsCarryTheExactLineNumber) {
   }
 }
 
+// Cells at the edges of the number grammar, in the value column and in a checked column: the
+// bulk parser's own scan and fast conversion must accept, convert (bit for bit) and reject
+// exactly as parse_number does, or leave the line to the line parser.
+TEST(TextReaderBulk, NumberEdgeCasesAgreeWithParseNumber) {
+  const std::vector<std::string> cells{
+      "1.", ".5", "-.5", "+.5", "1.e5", "-1.E-5", "+1e+5", "0", "-0", "-0.0", "00012.5000",
+      "1e22", "1e23", "9007199254740993", "9007199254740992", "123456789012345678901234",
+      "1e-22", "1e-23", "4.9e-324", "2.2250738585072014e-308", "1.7976931348623157e308",
+      "1e308", "1e309", "1e-400", "0.1", "0.3", "3.141592653589793238", "1e0000000000000001",
+      ".", "-", "+", "e5", "1e", "1e+", "--1", "+-1", "1..2", "1.2.3", "0x10", "1,5", "1_0",
+      "inf", "nan", "-inf", "Infinity", "1e5x", "١", " 1", "1 "};
+  std::string header = "a,b\n";
+  for (const std::string& cell : cells) {
+    for (const bool value_column : {true, false}) {
+      std::string text = header;
+      for (int i = 0; i < 3; ++i) text += "2.5,7.25\n";
+      text += value_column ? "3.5," + cell + "\n" : cell + ",8.5\n";
+      for (int i = 0; i < 3; ++i) text += "4.5,9.75\n";
+      TextReadOptions serial;
+      serial.column = std::string("b");
+      serial.bulk_rows = false;
+      TextReadOptions bulk = serial;
+      bulk.bulk_rows = true;
+      std::string serial_error, bulk_error;
+      std::vector<double> serial_values, bulk_values;
+      try {
+        serial_values = read_text_buffer(text, "e.csv", serial).values;
+      } catch (const InputError& error) {
+        serial_error = error.what();
+      }
+      try {
+        bulk_values = read_text_buffer(text, "e.csv", bulk).values;
+      } catch (const InputError& error) {
+        bulk_error = error.what();
+      }
+      EXPECT_EQ(bulk_error, serial_error) << "cell '" << cell << "'";
+      EXPECT_EQ(bits(bulk_values), bits(serial_values)) << "cell '" << cell << "'";
+      if (value_column && serial_error.empty()) {
+        ASSERT_EQ(serial_values.size(), 7u);
+        const std::size_t first = cell.find_first_not_of(' ');
+        const auto parsed = parse_number(cell.substr(first, cell.find_last_not_of(' ') + 1 - first));
+        ASSERT_TRUE(parsed.has_value()) << cell;
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(serial_values[3]), std::bit_cast<std::uint64_t>(*parsed));
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace imunoise::io
