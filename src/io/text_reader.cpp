@@ -1,6 +1,7 @@
 #include "imunoise/io/text_reader.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
@@ -288,16 +289,20 @@ struct PlainRows {
 
 inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
+// Whether the eight bytes of `word` are all '0'..'9' (each high nibble 3, and adding 6 keeps it).
+inline bool eight_digits(std::uint64_t word) {
+  return (word & 0xF0F0F0F0F0F0F0F0u) == 0x3030303030303030u &&
+         ((word + 0x0606060606060606u) & 0xF0F0F0F0F0F0F0F0u) == 0x3030303030303030u;
+}
+
+// The value of eight ASCII digits read little-endian (first digit in the lowest byte): pairs,
+// then quads, then the whole, each step one multiply.
 // Skips a run of digits, eight bytes at a time while eight more bytes are in [p, end).
 inline const char* skip_digits(const char* p, const char* end) {
   while (end - p >= 8) {
     std::uint64_t word;
     std::memcpy(&word, p, 8);
-    // All eight bytes are '0'..'9' when each high nibble is 3 and adding 6 keeps it 3.
-    if ((word & 0xF0F0F0F0F0F0F0F0u) != 0x3030303030303030u ||
-        ((word + 0x0606060606060606u) & 0xF0F0F0F0F0F0F0F0u) != 0x3030303030303030u) {
-      break;
-    }
+    if (!eight_digits(word)) break;
     p += 8;
   }
   while (is_digit(*p)) ++p;
@@ -339,6 +344,29 @@ struct Scanned {
   bool exact = false;
 };
 
+inline std::uint64_t eight_digit_value(std::uint64_t word) {
+  word = ((word & 0x0F0F0F0F0F0F0F0Fu) * 2561) >> 8;
+  word = ((word & 0x00FF00FF00FF00FFu) * 6553601) >> 16;
+  return ((word & 0x0000FFFF0000FFFFu) * 42949672960001u) >> 32;
+}
+
+// Appends the digits at p to mantissa (wrapping past 19 digits: the caller then does not use
+// it), eight at a time while eight bytes remain before end; returns the end of the digits.
+inline const char* read_digits(const char* p, const char* end, std::uint64_t& mantissa) {
+  while (end - p >= 8) {
+    std::uint64_t word;
+    std::memcpy(&word, p, 8);
+    if (!eight_digits(word)) break;
+    mantissa = mantissa * 100000000u + eight_digit_value(word);
+    p += 8;
+  }
+  while (is_digit(*p)) {
+    mantissa = mantissa * 10 + static_cast<std::uint64_t>(*p - '0');
+    ++p;
+  }
+  return p;
+}
+
 inline Scanned scan_decimal(const char* p, const char* end) {
   static constexpr double kPowers[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
                                        1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
@@ -352,21 +380,14 @@ inline Scanned scan_decimal(const char* p, const char* end) {
     ++p;
   }
   std::uint64_t mantissa = 0;
-  std::size_t digits = 0;
-  while (is_digit(*p)) {
-    mantissa = mantissa * 10 + static_cast<std::uint64_t>(*p - '0');
-    ++p;
-    ++digits;
-  }
+  const char* integer = p;
+  p = read_digits(p, end, mantissa);
   long long exponent = 0;
-  std::size_t total = digits;
+  std::size_t total = static_cast<std::size_t>(p - integer);
   if (*p == '.') {
     ++p;
     const char* fraction = p;
-    while (is_digit(*p)) {
-      mantissa = mantissa * 10 + static_cast<std::uint64_t>(*p - '0');
-      ++p;
-    }
+    p = read_digits(p, end, mantissa);
     const auto fraction_digits = static_cast<std::size_t>(p - fraction);
     total += fraction_digits;
     exponent = -static_cast<long long>(fraction_digits);
@@ -387,7 +408,6 @@ inline Scanned scan_decimal(const char* p, const char* end) {
     exponent += negative_exponent ? -written : written;
     p = q;
   }
-  (void)end;
   out.end = p;
   if (total <= 19 && mantissa <= (std::uint64_t{1} << 53) && exponent >= -22 && exponent <= 22) {
     const auto m = static_cast<double>(mantissa);
