@@ -179,13 +179,20 @@ DifferenceSums modified_difference_sums(std::span<const double> phase,
   const std::size_t n_phase = phase.size();
   DifferenceSums result{std::vector<double>(factors.size(), 0.0),
                         std::vector<std::size_t>(factors.size(), 0)};
-  std::vector<std::size_t> small, large;
+  // Far factors (multiples of the matrix view's column count, as for oadev) run down gathered
+  // column tiles: the window at the start of each tile row comes from long-double prefix sums
+  // of the phase at multiples of 64 (O(1) per row instead of a direct sum), the other 63 from
+  // the recursion down the tile, so one tile serves every far factor from cache.
+  const std::size_t columns = matrix_columns(n_phase);
+  std::vector<std::size_t> small, large, far;
   std::size_t small_count = 0;
   for (std::size_t t = 0; t < factors.size(); ++t) {
     const std::size_t m = factors[t];
     if (m == 0 || n_phase < 3 * m) continue;
     result.n[t] = n_phase - 3 * m + 1;
-    if (m <= kSmallWindowFactor) {
+    if (m % columns == 0) {
+      far.push_back(t);
+    } else if (m <= kSmallWindowFactor) {
       small.push_back(t);
       small_count = std::max(small_count, result.n[t]);
     } else {
@@ -213,15 +220,90 @@ DifferenceSums modified_difference_sums(std::span<const double> phase,
       items.push_back({kAllSmall, j, std::min(small_count, j + kMinChunk)});
     }
   }
-  // One slot per (item, factor it covers): large items cover one factor, chunks all small ones.
+  constexpr std::size_t kFarTile = static_cast<std::size_t>(-2);
+  const std::size_t n_tiles = far.empty() ? 0 : columns / kTileWidth;
+  for (std::size_t tile = 0; tile < n_tiles; ++tile) items.push_back({kFarTile, tile, tile});
+  // S(64 g) = sum_{i < 64 g} x_i, g = 0 .. n_phase / 64, in long double (fixed blocks: any
+  // thread count gives the same bits).
+  std::vector<long double> prefix64;
+  const double* x = phase.data();
+  if (!far.empty()) {
+    const std::size_t segments = n_phase / kTileWidth;
+    std::vector<long double> segment_sum(segments);
+    constexpr std::size_t kSegmentsPerItem = 4096;
+    parallel_for((segments + kSegmentsPerItem - 1) / kSegmentsPerItem, threads, [&](std::size_t item) {
+      const std::size_t end = std::min(segments, (item + 1) * kSegmentsPerItem);
+      for (std::size_t g = item * kSegmentsPerItem; g < end; ++g) {
+        const double* p = x + g * kTileWidth;
+        // Long double: each segment's rounding would otherwise build up along the prefix.
+        long double s0 = 0.0L, s1 = 0.0L, s2 = 0.0L, s3 = 0.0L;
+        for (std::size_t i = 0; i < kTileWidth; i += 4) {
+          s0 += p[i];
+          s1 += p[i + 1];
+          s2 += p[i + 2];
+          s3 += p[i + 3];
+        }
+        segment_sum[g] = (s0 + s1) + (s2 + s3);
+      }
+    });
+    prefix64.assign(segments + 1, 0.0L);
+    for (std::size_t g = 0; g < segments; ++g) prefix64[g + 1] = prefix64[g] + segment_sum[g];
+  }
+  const std::size_t tile_rows = (n_phase + columns - 1) / columns + 1;  // + 1: reads past the end
+  auto run_far_tile = [&](std::size_t tile_index, double* out) {
+    thread_local std::vector<double> tile;
+    thread_local std::vector<double> starts;
+    const std::size_t c0 = tile_index * kTileWidth;
+    gather_tile(phase, columns, c0, tile_rows, tile);
+    for (std::size_t f = 0; f < far.size(); ++f) {
+      const std::size_t m = factors[far[f]];
+      const std::size_t last = n_phase - 3 * m;  // last window start
+      if (c0 > last) {
+        out[f] = 0.0;
+        continue;
+      }
+      const std::size_t any_rows = (last - c0) / columns + 1;  // rows with a window
+      const std::size_t full_rows =
+          last >= c0 + kTileWidth - 1 ? (last - c0 - (kTileWidth - 1)) / columns + 1 : 0;
+      const std::size_t a = m / kTileWidth;
+      starts.resize(any_rows);
+      for (std::size_t r = 0; r < any_rows; ++r) {
+        const std::size_t g = (r * columns + c0) / kTileWidth;
+        starts[r] = static_cast<double>((prefix64[g + 3 * a] - prefix64[g]) -
+                                        3.0L * (prefix64[g + 2 * a] - prefix64[g + a]));
+      }
+      const std::size_t lag = m / columns * kTileWidth;
+      double sum = sum_sq_window_tile_rows(tile.data(), lag, starts.data(), full_rows);
+      for (std::size_t r = full_rows; r < any_rows; ++r) {  // the ragged last row
+        const double* t0 = tile.data() + r * kTileWidth;
+        const std::size_t valid = std::min(kTileWidth, last - (r * columns + c0) + 1);
+        double v = starts[r];
+        for (std::size_t c = 0; c < valid; ++c) {
+          sum += v * v;
+          const double e_hi = (t0[c + 3 * lag] - 2.0 * t0[c + 2 * lag]) + t0[c + lag];
+          const double e_lo = (t0[c + 2 * lag] - 2.0 * t0[c + lag]) + t0[c];
+          v += e_hi - e_lo;
+        }
+      }
+      out[f] = sum;
+    }
+  };
+  // One slot per (item, factor it covers): large items cover one factor, chunks all small ones,
+  // tiles all far ones.
   std::vector<std::size_t> slot(items.size() + 1, 0);
   for (std::size_t i = 0; i < items.size(); ++i) {
-    slot[i + 1] = slot[i] + (items[i].factor == kAllSmall ? small.size() : 1);
+    const std::size_t covers = items[i].factor == kAllSmall  ? small.size()
+                               : items[i].factor == kFarTile ? far.size()
+                                                             : 1;
+    slot[i + 1] = slot[i] + covers;
   }
   std::vector<double> partial(slot.back(), 0.0);
-  const double* x = phase.data();
   parallel_for(items.size(), threads, [&](std::size_t i) {
     const Item item = items[i];
+    if (item.factor == kFarTile) {
+      run_far_tile(item.begin, partial.data() + slot[i]);
+      return;
+    }
     if (item.factor != kAllSmall) {
       partial[slot[i]] = sum_sq_window_second_difference(x + item.begin, factors[item.factor],
                                                          item.end - item.begin);
@@ -240,7 +322,9 @@ DifferenceSums modified_difference_sums(std::span<const double> phase,
   });
   std::vector<long double> totals(factors.size(), 0.0L);
   for (std::size_t i = 0; i < items.size(); ++i) {
-    if (items[i].factor != kAllSmall) {
+    if (items[i].factor == kFarTile) {
+      for (std::size_t f = 0; f < far.size(); ++f) totals[far[f]] += partial[slot[i] + f];
+    } else if (items[i].factor != kAllSmall) {
       totals[items[i].factor] += partial[slot[i]];
     } else {
       for (std::size_t f = 0; f < small.size(); ++f) totals[small[f]] += partial[slot[i] + f];

@@ -151,6 +151,35 @@ IMUNOISE_CLONES double sum_sq_window_second_difference(const double* x, std::siz
   return sum;
 }
 
+IMUNOISE_CLONES double sum_sq_window_tile_rows(const double* tile, std::size_t lag,
+                                               const double* v0, std::size_t rows) {
+  constexpr std::size_t kWidth = 64;
+  // Lane 7 of the last vector is the window at column 64: the next row's start, not this row's.
+  const Vec8 last_mask = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 0.0};
+  Vec8 acc[2] = {};
+  double first = 0.0;
+  for (std::size_t r = 0; r < rows; ++r) {
+    const double* t0 = tile + r * kWidth;
+    const double* t1 = t0 + lag;
+    const double* t2 = t0 + 2 * lag;
+    const double* t3 = t0 + 3 * lag;
+    const double v = v0[r];
+    first += v * v;
+    Vec8 carry = {v, v, v, v, v, v, v, v};
+    for (std::size_t k = 0; k < kWidth; k += kLanes) {
+      const Vec8 a1 = load(t1 + k), a2 = load(t2 + k);
+      const Vec8 inc = ((load(t3 + k) - 2.0 * a2) + a1) - ((a2 - 2.0 * a1) + load(t0 + k));
+      const Vec8 prefix = inclusive_scan(inc);
+      Vec8 w = carry + prefix;
+      if (k + kLanes == kWidth) w *= last_mask;
+      acc[(k / kLanes) & 1] += w * w;
+      carry += broadcast_last(prefix);
+    }
+  }
+  const Vec8 s = acc[0] + acc[1];
+  return first + (((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7])));
+}
+
 namespace {
 
 // The six third differences z_{r+km} (k = 0..5) as combinations of the subsequence prefix P at

@@ -22,6 +22,14 @@ double sum_sq_third_difference(const double* x, std::size_t m, std::size_t count
 double sum_sq_window_second_difference(const double* x, std::size_t m, std::size_t count,
                                        double* second_sum = nullptr);
 
+/// Modified-Allan windows down a gathered tile (difference_sums.cpp): rows of 64 phase samples,
+/// row r + A starting m samples after row r (lag = 64 A elements). For each of `rows` rows, the
+/// windows v(r, c), c = 0..63, with v(r, 0) = v0[r] and v(r, c+1) = v(r, c) + e_{c+m} - e_c
+/// (e the second difference at lag m, read down the tile); returns the sum of their squares.
+/// Reads tile rows up to rows - 1 + 3A, all 64 columns.
+double sum_sq_window_tile_rows(const double* tile, std::size_t lag, const double* v0,
+                               std::size_t rows);
+
 /// The mtot/htot kernel (total.hpp) for `count` consecutive 3m-point subsequences of a sequence
 /// u, given its prefix sums ul[i] = sum_{k<i} (u[k] - c - s k) for any c, s (a constant and a
 /// linear trend in u leave the result unchanged; removing the local ones keeps ul small):
