@@ -31,17 +31,17 @@ int family_d(Estimator estimator) {
 
 int lowest_alpha(int d) { return std::max(kMinNoiseAlpha, 2 - 2 * d); }
 
-// Identification reads at most the first 2^18 decimated points: the lag-1 estimate's
-// standard error there is ~1/sqrt(2^18) = 2e-3, far inside the 1/4 decision margin (and a
-// hundred times inside the 0.2 between the nearest model values at m >= 2), and a
+// Identification reads at most the first 2^17 decimated points: the lag-1 estimate's
+// standard error there is ~1/sqrt(2^17) = 3e-3, ninety times inside the 1/4 decision margin
+// (and seventy inside the 0.2 between the nearest model values at m >= 2), and a
 // record of 1e8 samples is neither copied nor read in full for every tau.
-constexpr std::size_t kMaxIdentificationPoints = std::size_t{1} << 18;
+constexpr std::size_t kMaxIdentificationPoints = std::size_t{1} << 17;
 
 // Lag-1 autocorrelation about the mean of z[0, n) (two passes: mean, then centred sums). Four
 // interleaved partial sums per quantity: the loop runs at the load rate instead of waiting on
 // one add chain, and the result does not depend on threads or CPU. Doubles suffice: the
 // statistic only has to fall on the right side of boundaries ~0.25 apart, and over at most
-// 2^18 points its rounding (~1e-13) is ten orders below its own scatter (~2e-3).
+// 2^17 points its rounding (~1e-13) is ten orders below its own scatter (~3e-3).
 double lag1_of(const double* z, std::size_t n) {
   if (n < 3) return kNaN;
   double m0 = 0.0, m1 = 0.0, m2 = 0.0, m3 = 0.0;
@@ -93,7 +93,8 @@ Lag1Stage lag1_stage(std::span<const double> phase, std::size_t m, int d_max) {
   const std::size_t points = std::min(decimated_count(phase.size(), m), kMaxIdentificationPoints);
   if (points < static_cast<std::size_t>(d_max) + 3) return stage;
   // The decimated phase is gathered once and differenced in place: one strided read of the
-  // record per tau, then contiguous passes over at most 8 MB.
+  // record per tau (at m >= 8 one cache line per point: the gather is most of the cost), then
+  // contiguous passes over at most 1 MB.
   thread_local std::vector<double> z;
   z.resize(points);
   const double* x = phase.data();
