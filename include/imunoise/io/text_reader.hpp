@@ -21,8 +21,8 @@
 // when no line applies), names the column and quotes the offending text (at most 40
 // characters), and ends with "fix: ...". Nothing is skipped silently.
 //
-// Speed: input is read in blocks (8 MiB by default) and parsed in place with fast_float; memory
-// is the output vectors plus one block. Once the first data row has fixed the layout, each
+// Speed: input is read in blocks (8 MiB by default) and parsed in place (fast_float, or an exact
+// fast path for decimals of at most 19 digits); memory is the output vectors plus one block. Once the first data row has fixed the layout, each
 // block's complete lines are split at line ends into one byte range per thread and parsed by a
 // row parser that only knows plain rows (numbers, separators, blanks around them): it converts
 // the value column (and the time column) and only checks that the other cells are numbers.
