@@ -70,6 +70,22 @@ TEST(ModifiedBlocked, MatchesPrefixReferenceOnLongRecords) {
   }
 }
 
+// Short records whose factors are multiples of the tile columns (128 here): a handful of tile
+// rows, the last window ending exactly at the last sample, against the literal definition.
+TEST(ModifiedBlocked, TilePathOnShortRecordsMatchesTheDefinition) {
+  for (const std::size_t n : {384u, 385u, 400u, 517u, 1000u, 1153u}) {
+    const auto x = white_fm_phase(n, 25);
+    std::vector<std::size_t> factors;
+    for (std::size_t m = 128; 3 * m <= n; m += 128) factors.push_back(m);
+    factors.push_back(1);
+    factors.push_back(n / 3);
+    for (const auto& p : compute_deviation(Estimator::mdev, x, 0.01, factors)) {
+      EXPECT_NEAR(p.dev / test::reference_deviation(Estimator::mdev, x, 0.01, p.m), 1.0, 1e-12)
+          << "n=" << n << " m=" << p.m;
+    }
+  }
+}
+
 // Phase far from zero and tilted (a rate offset left in): the recursion's increments cancel the
 // offset and slope term by term; the result still matches to 1e-10.
 TEST(ModifiedBlocked, OffsetAndSlopeDoNotDegradeResults) {
