@@ -472,10 +472,11 @@ std::size_t parse_plain_rows(const char* begin, const char* end, const RowLayout
       if (column == last_column) break;
       if (words) {
         plain = q != after;  // cells are separated by at least one blank
-      } else {
-        plain = *q == sep;
+      } else if (*q == sep) {  // never step past a '\n': it may end the buffer
         ++q;
         while (blank(*q)) ++q;
+      } else {
+        plain = false;
       }
     }
     if (!plain) break;
