@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "imunoise/confidence/fill_confidence.hpp"
 #include "imunoise/deviation.hpp"
 #include "imunoise/phase.hpp"
 #include "imunoise/tau_grid.hpp"
@@ -102,6 +103,25 @@ void BM_naive(benchmark::State& state, Estimator e, const char* grid) {
   set_counters(state, n, f, e);
 }
 
+// The library's default path (deviation, then noise identification and confidence intervals
+// at every tau) against the deviation alone (--no-ci), same data, same run.
+void BM_default_path(benchmark::State& state, Estimator e, bool with_ci, unsigned threads) {
+  const auto n = static_cast<std::size_t>(state.range(0));
+  const auto& x = phase_of_size(n);
+  const auto f = factors_for(e, n, "octave");
+  imunoise::ConfidenceOptions options;
+  options.threads = threads;
+  for (auto _ : state) {
+    auto points = imunoise::compute_deviation(e, x, 0.005, f, {threads});
+    if (with_ci) {
+      auto info = imunoise::fill_confidence(points, e, x, options);
+      benchmark::DoNotOptimize(info.data());
+    }
+    benchmark::DoNotOptimize(points.data());
+  }
+  set_counters(state, n, f, e);
+}
+
 }  // namespace
 
 // Registers the engine on 1 and 2 threads and the naive baseline, for each size.
@@ -126,6 +146,14 @@ int main(int argc, char** argv) {
   register_case("ohdev_octave", Estimator::ohdev, "octave", {1'000'000, 10'000'000});
   register_case("mdev_octave", Estimator::mdev, "octave", {1'000'000, 10'000'000});
   register_case("hdev_octave", Estimator::hdev, "octave", {1'000'000, 10'000'000});
+  for (const Estimator e : {Estimator::oadev, Estimator::mdev}) {
+    for (const bool with_ci : {false, true}) {
+      const std::string name = std::string(imunoise::estimator_name(e)) + "_octave_2threads_" +
+                               (with_ci ? "with_ci" : "no_ci");
+      benchmark::RegisterBenchmark(name.c_str(), BM_default_path, e, with_ci, 2u)
+          ->Arg(10'000'000)->Unit(benchmark::kMillisecond)->UseRealTime();
+    }
+  }
   // oadev over every factor on 1e6 samples: 2.5e11 terms (AllanTools: ~800 s). Opt-in:
   // --benchmark_filter=all_1e6
   benchmark::RegisterBenchmark("oadev_all_1e6_2threads", BM_engine, Estimator::oadev, "all", 2u)

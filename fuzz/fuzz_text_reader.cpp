@@ -2,6 +2,9 @@
 // throw InputError; anything else (a crash, a sanitizer report, another exception, a leak, a
 // hang) is a bug.
 //
+// Every input is also read with the bulk row parser off (the plain line-by-line read) and, for
+// the buffer path, with 1-3 threads: values, times, lines and error messages must be identical.
+//
 // Input layout: byte 0 chooses the options (so the fuzzer explores them too), the rest is the
 // file content.
 //   bits 0-1  value column: none, index (byte 0 >> 6), name "x", name "gx"
@@ -11,6 +14,8 @@
 //   bit  7    also analyse the timestamps (rate, gaps, disorder)
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <string_view>
@@ -40,6 +45,50 @@ imunoise::io::TextReadOptions options_from(std::uint8_t bits) {
   return options;
 }
 
+// The outcome of one read: the columns, or the error message.
+struct Outcome {
+  std::optional<imunoise::io::TextColumns> columns;
+  std::string error;
+};
+
+Outcome read(std::string_view text, imunoise::io::TextReadOptions options, unsigned path) {
+  Outcome out;
+  try {
+    if (path == 0) {
+      out.columns = imunoise::io::read_text_buffer(text, "fuzz", options);
+    } else {
+      constexpr std::size_t block_sizes[] = {0, 1, 7, 4096};
+      options.block_bytes = block_sizes[path];
+      std::istringstream in{std::string(text)};
+      out.columns = imunoise::io::read_text_stream(in, "fuzz", options);
+    }
+  } catch (const imunoise::InputError& error) {
+    out.error = error.what();
+  }
+  return out;
+}
+
+bool same_doubles(const std::vector<double>& a, const std::vector<double>& b) {
+  return a.size() == b.size() &&
+         (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(double)) == 0);
+}
+
+// Bulk and line-by-line reads must agree to the bit and to the letter.
+void check_same(const Outcome& a, const Outcome& b) {
+  if (a.error != b.error || a.columns.has_value() != b.columns.has_value()) __builtin_trap();
+  if (!a.columns) return;
+  const auto& x = *a.columns;
+  const auto& y = *b.columns;
+  if (!same_doubles(x.values, y.values) || !same_doubles(x.time_s, y.time_s)) __builtin_trap();
+  if (x.header != y.header || x.first_data_line != y.first_data_line ||
+      x.time_origin != y.time_origin) {
+    __builtin_trap();
+  }
+  for (std::size_t i = 0; i < x.values.size(); ++i) {
+    if (x.line_of(i) != y.line_of(i)) __builtin_trap();
+  }
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -67,6 +116,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   } catch (const imunoise::InputError&) {
     // The expected outcome for invalid input.
+  }
+  // Differential check of the bulk row parser (on by default above) against the plain read.
+  const unsigned path = (bits >> 4u) & 3u;
+  options.bulk_rows = false;
+  const Outcome plain = read(text, options, path);
+  options.bulk_rows = true;
+  for (const unsigned threads : {1u, 2u, 3u}) {
+    options.threads = threads;
+    check_same(read(text, options, path), plain);
+    if (path != 0) break;  // the stream paths' tiny blocks make threads moot
   }
   return 0;
 }

@@ -270,7 +270,11 @@ void run_dev(const DevOptionsCli& options) {
     }
     std::vector<PointConfidence> confidence;
     if (!options.no_ci && record.segments.size() <= 1) {
-      confidence = fill_confidence(points, estimator, record.phase_si, options.ci_level, forced_alpha);
+      ConfidenceOptions confidence_options;
+      confidence_options.level = options.ci_level;
+      confidence_options.forced_alpha = forced_alpha;
+      confidence_options.threads = options.threads;
+      confidence = fill_confidence(points, estimator, record.phase_si, confidence_options);
     }
     // SI inside, the input's unit at the edge: tdev, ttotdev, mtie, tierms are angles.
     const bool integrated = reports_angle(estimator);

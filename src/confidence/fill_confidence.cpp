@@ -6,6 +6,7 @@
 #include <string>
 
 #include "imunoise/error.hpp"
+#include "../core/parallel.hpp"  // the library's fork-join helper
 
 namespace imunoise {
 namespace {
@@ -42,6 +43,15 @@ std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Esti
                    [&](std::size_t a, std::size_t b) { return points[a].m < points[b].m; });
 
   const std::size_t n_phase = phase.size();
+  // Identification at each tau reads only the phase, so the taus are identified side by side
+  // (each result lands in its own slot: the outcome cannot depend on the thread count); the
+  // fallback to the previous tau's noise type below is then applied in increasing m.
+  std::vector<NoiseId> identified(points.size());
+  if (finite_difference_proxy(estimator) && !options.forced_alpha) {
+    detail::parallel_for(points.size(), options.threads, [&](std::size_t i) {
+      if (points[i].m > 0) identified[i] = try_identify_noise(phase, points[i].m, estimator);
+    });
+  }
   std::optional<int> previous;
   for (const std::size_t index : order) {
     DevPoint& point = points[index];
@@ -58,7 +68,7 @@ std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Esti
       out.noise.alpha = *options.forced_alpha;
       out.noise.method = NoiseIdMethod::forced;
     } else if (point.m > 0) {
-      out.noise = try_identify_noise(phase, point.m, estimator);
+      out.noise = std::move(identified[index]);
       if (!out.noise.identified() && previous) {
         out.note = out.noise.message + "; using alpha = " + std::to_string(*previous) +
                    " identified at a smaller tau";

@@ -8,6 +8,7 @@
 
 #include "imunoise/confidence/edf.hpp"
 #include "imunoise/error.hpp"
+#include "../core/kernels.hpp"   // the deviation engine's vector kernels
 #include "../core/parallel.hpp"  // the library's fork-join helper
 #include "power_law_model.hpp"
 
@@ -30,56 +31,53 @@ int family_d(Estimator estimator) {
 
 int lowest_alpha(int d) { return std::max(kMinNoiseAlpha, 2 - 2 * d); }
 
-// Identification reads at most the first 2^20 decimated points: the lag-1 estimate's
-// standard error there is ~1/sqrt(2^20) = 1e-3, far inside the 1/4 decision margin, and a
+// Identification reads at most the first 2^17 decimated points: the lag-1 estimate's
+// standard error there is ~1/sqrt(2^17) = 3e-3, ninety times inside the 1/4 decision margin
+// (and seventy inside the 0.2 between the nearest model values at m >= 2), and a
 // record of 1e8 samples is neither copied nor read in full for every tau.
-constexpr std::size_t kMaxIdentificationPoints = std::size_t{1} << 20;
+constexpr std::size_t kMaxIdentificationPoints = std::size_t{1} << 17;
 
-// The d-th difference of the phase decimated by m, z_d[i] = sum_j (-1)^(d-j) C(d,j) x[(i+j)m],
-// formed on the fly (long double: exact for the small binomial weights) instead of stored.
-class DecimatedDifference {
- public:
-  DecimatedDifference(std::span<const double> phase, std::size_t m, std::size_t points, int d)
-      : phase_(phase), m_(m), count_(points - static_cast<std::size_t>(d)) {
-    long double c = 1.0L;  // C(d, j) with alternating sign, highest index last
-    for (int j = 0; j <= d; ++j) {
-      weights_.push_back(((d - j) % 2 == 0 ? 1.0L : -1.0L) * c);
-      c = c * (d - j) / (j + 1);
-    }
-  }
-  [[nodiscard]] std::size_t size() const { return count_; }
-  [[nodiscard]] long double operator[](std::size_t i) const {
-    long double z = 0.0L;
-    for (std::size_t j = 0; j < weights_.size(); ++j) z += weights_[j] * phase_[(i + j) * m_];
-    return z;
-  }
-
- private:
-  std::span<const double> phase_;
-  std::size_t m_;
-  std::size_t count_;
-  std::vector<long double> weights_;
-};
-
-// Lag-1 autocorrelation about the mean (two passes: mean, then centred sums).
-double lag1_of(const DecimatedDifference& z) {
-  const std::size_t n = z.size();
+// Lag-1 autocorrelation about the mean of z[0, n) (two passes: mean, then centred sums). Four
+// interleaved partial sums per quantity: the loop runs at the load rate instead of waiting on
+// one add chain, and the result does not depend on threads or CPU. Doubles suffice: the
+// statistic only has to fall on the right side of boundaries ~0.25 apart, and over at most
+// 2^17 points its rounding (~1e-13) is ten orders below its own scatter (~3e-3).
+double lag1_of(const double* z, std::size_t n) {
   if (n < 3) return kNaN;
-  long double mean = 0.0L;
-  for (std::size_t i = 0; i < n; ++i) mean += z[i];
-  mean /= static_cast<long double>(n);
-  long double num = 0.0L;
-  long double den = 0.0L;
-  long double previous = z[0] - mean;
-  den += previous * previous;
-  for (std::size_t i = 1; i < n; ++i) {
-    const long double a = z[i] - mean;
-    den += a * a;
-    num += previous * a;
-    previous = a;
+  double m0 = 0.0, m1 = 0.0, m2 = 0.0, m3 = 0.0;
+  std::size_t i = 0;
+  for (; i + 4 <= n; i += 4) {
+    m0 += z[i];
+    m1 += z[i + 1];
+    m2 += z[i + 2];
+    m3 += z[i + 3];
   }
-  if (!(den > 0.0L) || !std::isfinite(static_cast<double>(den))) return kNaN;
-  return static_cast<double>(num / den);
+  for (; i < n; ++i) m0 += z[i];
+  const double mean = ((m0 + m1) + (m2 + m3)) / static_cast<double>(n);
+  double num0 = 0.0, num1 = 0.0, num2 = 0.0, num3 = 0.0;
+  double den0 = 0.0, den1 = 0.0, den2 = 0.0, den3 = 0.0;
+  i = 0;
+  for (; i + 5 <= n; i += 4) {
+    const double a0 = z[i] - mean, a1 = z[i + 1] - mean, a2 = z[i + 2] - mean,
+                 a3 = z[i + 3] - mean, a4 = z[i + 4] - mean;
+    den0 += a0 * a0;
+    den1 += a1 * a1;
+    den2 += a2 * a2;
+    den3 += a3 * a3;
+    num0 += a0 * a1;
+    num1 += a1 * a2;
+    num2 += a2 * a3;
+    num3 += a3 * a4;
+  }
+  for (; i < n; ++i) {
+    const double a = z[i] - mean;
+    den0 += a * a;
+    if (i + 1 < n) num0 += a * (z[i + 1] - mean);
+  }
+  const double num = (num0 + num1) + (num2 + num3);
+  const double den = (den0 + den1) + (den2 + den3);
+  if (!(den > 0.0) || !std::isfinite(den)) return kNaN;
+  return num / den;
 }
 
 // The lag-1 procedure on phase decimated by m: the differencing order d where it stopped and
@@ -94,8 +92,16 @@ Lag1Stage lag1_stage(std::span<const double> phase, std::size_t m, int d_max) {
   if (m == 0 || d_max < 0) return stage;
   const std::size_t points = std::min(decimated_count(phase.size(), m), kMaxIdentificationPoints);
   if (points < static_cast<std::size_t>(d_max) + 3) return stage;
+  // The decimated phase is gathered once and differenced in place: one strided read of the
+  // record per tau (at m >= 8 one cache line per point: the gather is most of the cost), then
+  // contiguous passes over at most 1 MB.
+  thread_local std::vector<double> z;
+  z.resize(points);
+  const double* x = phase.data();
+  for (std::size_t i = 0; i < points; ++i) z[i] = x[i * m];
+  std::size_t n = points;
   for (int d = 0;; ++d) {
-    const double r1 = lag1_of(DecimatedDifference(phase, m, points, d));
+    const double r1 = lag1_of(z.data(), n);
     if (std::isnan(r1)) return stage;
     const double delta = r1 / (1.0 + r1);
     if (delta < 0.25 || d >= d_max) {
@@ -103,6 +109,8 @@ Lag1Stage lag1_stage(std::span<const double> phase, std::size_t m, int d_max) {
       stage.d = d;
       return stage;
     }
+    for (std::size_t i = 0; i + 1 < n; ++i) z[i] = z[i + 1] - z[i];
+    --n;
   }
 }
 
@@ -234,41 +242,34 @@ double b1_expected(std::size_t n_averages, double mu) {
 double rn_ratio(std::span<const double> phase, std::size_t m) {
   if (m == 0 || phase.size() < 3 * m) return kNaN;
   const std::size_t n = phase.size();
-  // Second differences e[k] = x[k+2m] - 2 x[k+m] + x[k], k = 0 .. n-2m-1, computed where
-  // needed: this runs at long taus of records of any length, so it must not hold a copy.
-  const std::size_t count = n - 2 * m;
-  const auto e = [&](std::size_t k) {
-    return (phase[k + 2 * m] - phase[k + m]) - (phase[k + m] - phase[k]);
-  };
-  // Doubles, restarted per block: a ratio that only chooses between two noise types an octave
-  // apart does not need long double, but this runs over all of a record of 1e8 samples, so
-  // the blocks are spread over the cores (in fixed blocks: the result is thread-independent).
+  // Second differences e[k] = x[k+2m] - 2 x[k+m] + x[k], k = 0 .. n-2m-1, formed where needed
+  // by the deviation engine's vector kernels: this runs at long taus of records of any length,
+  // so it must not hold a copy. Doubles, in fixed blocks spread over the cores (the result is
+  // thread-independent): a ratio that only chooses between two noise types an octave apart
+  // does not need long double, but this reads all of a record of 1e8 samples.
   // Modified part: the mean of e over windows of m consecutive terms (n - 3m + 1 windows), a
   // running sum restarted from a direct sum at every block of max(2^16, m) windows so that
   // rounding cannot build up beyond the statistic's own (percent-level) scatter.
+  const std::size_t count = n - 2 * m;
   const std::size_t windows = count - m + 1;
   const std::size_t block = std::max<std::size_t>(std::size_t{1} << 16, m);
   const std::size_t n_blocks = (count + block - 1) / block;
   std::vector<double> allan_parts(n_blocks, 0.0);
   std::vector<double> modified_parts(n_blocks, 0.0);
   const double inv_m2 = 1.0 / (static_cast<double>(m) * static_cast<double>(m));
+  const double* x = phase.data();
+  // One pass: the window recursion reads e_k for k in [begin, w_end - 1) anyway and returns
+  // their squares too; e_{w_end - 1} and the last m - 1 terms past the last window are added
+  // directly.
   detail::parallel_for(n_blocks, 0, [&](std::size_t b) {
     const std::size_t begin = b * block;
-    double squares = 0.0;
-    for (std::size_t k = begin; k < std::min(count, begin + block); ++k) squares += e(k) * e(k);
-    allan_parts[b] = squares;
     const std::size_t w_end = std::min(windows, begin + block);
     if (begin >= w_end) return;
-    double window = 0.0;
-    for (std::size_t i = begin; i < begin + m; ++i) window += e(i);
-    double sum = window * window;
-    for (std::size_t j = begin + 1; j < w_end; ++j) {
-      // e(j + m - 1) - e(j - 1) as one third difference: four loads instead of six.
-      const double* x = phase.data() + (j - 1);
-      window += (x[3 * m] - x[0]) - 3.0 * (x[2 * m] - x[m]);
-      sum += window * window;
-    }
-    modified_parts[b] = sum * inv_m2;
+    double squares = 0.0;
+    modified_parts[b] =
+        detail::sum_sq_window_second_difference(x + begin, m, w_end - begin, &squares) * inv_m2;
+    const std::size_t e_end = w_end == windows ? count : w_end;
+    allan_parts[b] = squares + detail::sum_sq_second_difference(x + w_end - 1, m, e_end - (w_end - 1));
   });
   long double allan = 0.0L;
   long double modified = 0.0L;
@@ -278,6 +279,58 @@ double rn_ratio(std::span<const double> phase, std::size_t m) {
   }
   allan /= static_cast<long double>(count);
   modified /= static_cast<long double>(windows);
+  if (!(allan > 0.0L)) return kNaN;
+  return static_cast<double>(modified / allan);
+}
+
+double rn_ratio_sampled(std::span<const double> phase, std::size_t m, std::size_t min_stride) {
+  if (m == 0 || phase.size() < 3 * m) return kNaN;
+  std::size_t q = m & (~m + 1);  // lowest set bit of m
+  while (q > m / 64) q /= 2;
+  if (q < std::max<std::size_t>(min_stride, 4)) return rn_ratio(phase, m);
+  const std::size_t n = phase.size();
+  const std::size_t blocks = n / q;  // whole blocks of q samples
+  // Prefix sums of the phase at multiples of q: block sums in doubles (fixed blocks, spread
+  // over the cores), accumulated in long double, where the window's third difference of the
+  // prefix loses nothing to the prefix's size.
+  std::vector<double> block_sum(blocks);
+  const double* x = phase.data();
+  constexpr std::size_t kBlocksPerItem = 16;
+  detail::parallel_for((blocks + kBlocksPerItem - 1) / kBlocksPerItem, 0, [&](std::size_t item) {
+    const std::size_t end = std::min(blocks, (item + 1) * kBlocksPerItem);
+    for (std::size_t b = item * kBlocksPerItem; b < end; ++b) {
+      const double* p = x + b * q;
+      double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+      for (std::size_t i = 0; i < q; i += 4) {  // q is a power of two >= 4
+        s0 += p[i];
+        s1 += p[i + 1];
+        s2 += p[i + 2];
+        s3 += p[i + 3];
+      }
+      block_sum[b] = (s0 + s1) + (s2 + s3);
+    }
+  });
+  std::vector<long double> prefix(blocks + 1, 0.0L);
+  for (std::size_t b = 0; b < blocks; ++b) prefix[b + 1] = prefix[b] + block_sum[b];
+  const std::size_t a = m / q;
+  // Window at j = k q: v = S(j + 3m) - 3 S(j + 2m) + 3 S(j + m) - S(j), S(t) = sum_{i<t} x_i.
+  long double modified = 0.0L;
+  std::size_t windows = 0;
+  for (std::size_t k = 0; k + 3 * a <= blocks; ++k, ++windows) {
+    const long double v = (prefix[k + 3 * a] - prefix[k]) - 3.0L * (prefix[k + 2 * a] - prefix[k + a]);
+    modified += v * v;
+  }
+  // Second differences at the same start points (j + 2m <= n - 1).
+  long double allan = 0.0L;
+  std::size_t terms = 0;
+  for (std::size_t j = 0; j + 2 * m < n; j += q, ++terms) {
+    const long double e = (static_cast<long double>(x[j + 2 * m]) - x[j + m]) - (x[j + m] - x[j]);
+    allan += e * e;
+  }
+  if (windows == 0 || terms == 0) return kNaN;
+  const long double md = static_cast<long double>(m);
+  modified /= md * md * static_cast<long double>(windows);
+  allan /= static_cast<long double>(terms);
   if (!(allan > 0.0L)) return kNaN;
   return static_cast<double>(modified / allan);
 }
@@ -343,7 +396,7 @@ NoiseId try_identify_noise(std::span<const double> phase, std::size_t m, Estimat
       return result;
     }
     // White or flicker PM: R(n) decides (the boundary is the geometric mean).
-    const double rn = rn_ratio(phase, m);
+    const double rn = rn_ratio_sampled(phase, m);
     result.method = NoiseIdMethod::b1_rn_ratio;
     result.statistic = rn;
     const double white = rn_expected(2, m);

@@ -16,6 +16,9 @@ namespace {
 constexpr std::size_t kBlock = 4096;
 constexpr std::size_t kMinChunk = 65536;
 constexpr std::size_t kMaxPartials = std::size_t{1} << 23;  // 64 MB of partial sums at most
+// Modified Allan: factors up to this run together over chunks of starts (their segments, at
+// most 16 m long, fit in a chunk); larger ones run alone over segments of at least 4 m.
+constexpr std::size_t kSmallWindowFactor = kMinChunk / 16;
 
 std::size_t chunk_length(std::size_t n_starts, std::size_t n_factors) {
   std::size_t chunk = kMinChunk;
@@ -167,47 +170,167 @@ DifferenceSums strided_difference_sums(std::span<const double> phase, int order,
 
 DifferenceSums modified_difference_sums(std::span<const double> phase,
                                         std::span<const std::size_t> factors, unsigned threads) {
-  // v_j = sum_{i=j}^{j+m-1} (x[i+2m] - 2x[i+m] + x[i]) obeys
-  // v_{j+1} = v_j + x[j+3m] - 3x[j+2m] + 3x[j+m] - x[j]. The recursion runs in long double,
-  // where the four-term increment of doubles is exact, and restarts from a direct sum at
-  // every segment, so rounding cannot build up and segments can run in parallel.
-  struct Item {
-    std::size_t factor;
-    std::size_t begin;
-    std::size_t end;
-  };
+  // v_j = sum_{i=j}^{j+m-1} (x[i+2m] - 2x[i+m] + x[i]) runs as v_{j+1} = v_j + e_{j+m} - e_j in
+  // the vector kernel, restarted from a direct sum at every segment so that rounding cannot
+  // build up (the longer segments of large factors have windows large enough to absorb it) and
+  // segments can run in parallel. Small factors run together over chunks of starts, as oadev's
+  // near factors do: a chunk of x (half a megabyte) stays in cache for all of them, so the record
+  // comes from memory about once for all small factors instead of once per factor.
   const std::size_t n_phase = phase.size();
   DifferenceSums result{std::vector<double>(factors.size(), 0.0),
                         std::vector<std::size_t>(factors.size(), 0)};
-  std::vector<Item> items;
+  // Far factors (multiples of the matrix view's column count, as for oadev) run down gathered
+  // column tiles: the window at the start of each tile row comes from long-double prefix sums
+  // of the phase at multiples of 64 (O(1) per row instead of a direct sum), the other 63 from
+  // the recursion down the tile, so one tile serves every far factor from cache.
+  const std::size_t columns = matrix_columns(n_phase);
+  std::vector<std::size_t> small, large, far;
+  std::size_t small_count = 0;
   for (std::size_t t = 0; t < factors.size(); ++t) {
     const std::size_t m = factors[t];
-    if (n_phase < 3 * m) continue;
-    const std::size_t n = n_phase - 3 * m + 1;
-    result.n[t] = n;
-    const std::size_t segment = std::max(kMinChunk, m);  // direct restart costs O(m)
-    for (std::size_t j = 0; j < n; j += segment) items.push_back({t, j, std::min(n, j + segment)});
+    if (m == 0 || n_phase < 3 * m) continue;
+    result.n[t] = n_phase - 3 * m + 1;
+    if (m % columns == 0) {
+      far.push_back(t);
+    } else if (m <= kSmallWindowFactor) {
+      small.push_back(t);
+      small_count = std::max(small_count, result.n[t]);
+    } else {
+      large.push_back(t);
+    }
   }
-  std::vector<double> partial(items.size(), 0.0);
+  // Restart segment of a factor: kBlock windows while the direct sum is cheap, longer (up to a
+  // chunk) for larger m, so the restart costs at most 1/16 of the segment.
+  auto segment_of = [](std::size_t m) { return std::max(kBlock, 16 * m); };
+  struct Item {
+    std::size_t factor;  // index into factors; SIZE_MAX for a chunk of all small factors
+    std::size_t begin;
+    std::size_t end;
+  };
+  constexpr std::size_t kAllSmall = static_cast<std::size_t>(-1);
+  std::vector<Item> items;
+  // Large factors first: their segments are the longest items, so the threads finish together.
+  for (auto it = large.rbegin(); it != large.rend(); ++it) {
+    const std::size_t n = result.n[*it];
+    const std::size_t segment = std::max(kMinChunk, 4 * factors[*it]);
+    for (std::size_t j = 0; j < n; j += segment) items.push_back({*it, j, std::min(n, j + segment)});
+  }
+  if (!small.empty()) {
+    for (std::size_t j = 0; j < small_count; j += kMinChunk) {
+      items.push_back({kAllSmall, j, std::min(small_count, j + kMinChunk)});
+    }
+  }
+  constexpr std::size_t kFarTile = static_cast<std::size_t>(-2);
+  const std::size_t n_tiles = far.empty() ? 0 : columns / kTileWidth;
+  for (std::size_t tile = 0; tile < n_tiles; ++tile) items.push_back({kFarTile, tile, tile});
+  // S(64 g) = sum_{i < 64 g} x_i, g = 0 .. n_phase / 64, in long double (fixed blocks: any
+  // thread count gives the same bits).
+  std::vector<long double> prefix64;
   const double* x = phase.data();
+  if (!far.empty()) {
+    const std::size_t segments = n_phase / kTileWidth;
+    std::vector<long double> segment_sum(segments);
+    constexpr std::size_t kSegmentsPerItem = 4096;
+    parallel_for((segments + kSegmentsPerItem - 1) / kSegmentsPerItem, threads, [&](std::size_t item) {
+      const std::size_t end = std::min(segments, (item + 1) * kSegmentsPerItem);
+      for (std::size_t g = item * kSegmentsPerItem; g < end; ++g) {
+        const double* p = x + g * kTileWidth;
+        // Long double: each segment's rounding would otherwise build up along the prefix.
+        long double s0 = 0.0L, s1 = 0.0L, s2 = 0.0L, s3 = 0.0L;
+        for (std::size_t i = 0; i < kTileWidth; i += 4) {
+          s0 += p[i];
+          s1 += p[i + 1];
+          s2 += p[i + 2];
+          s3 += p[i + 3];
+        }
+        segment_sum[g] = (s0 + s1) + (s2 + s3);
+      }
+    });
+    prefix64.assign(segments + 1, 0.0L);
+    for (std::size_t g = 0; g < segments; ++g) prefix64[g + 1] = prefix64[g] + segment_sum[g];
+  }
+  const std::size_t tile_rows = (n_phase + columns - 1) / columns + 1;  // + 1: reads past the end
+  auto run_far_tile = [&](std::size_t tile_index, double* out) {
+    thread_local std::vector<double> tile;
+    thread_local std::vector<double> starts;
+    const std::size_t c0 = tile_index * kTileWidth;
+    gather_tile(phase, columns, c0, tile_rows, tile);
+    for (std::size_t f = 0; f < far.size(); ++f) {
+      const std::size_t m = factors[far[f]];
+      const std::size_t last = n_phase - 3 * m;  // last window start
+      if (c0 > last) {
+        out[f] = 0.0;
+        continue;
+      }
+      const std::size_t any_rows = (last - c0) / columns + 1;  // rows with a window
+      const std::size_t full_rows =
+          last >= c0 + kTileWidth - 1 ? (last - c0 - (kTileWidth - 1)) / columns + 1 : 0;
+      const std::size_t a = m / kTileWidth;
+      starts.resize(any_rows);
+      for (std::size_t r = 0; r < any_rows; ++r) {
+        const std::size_t g = (r * columns + c0) / kTileWidth;
+        starts[r] = static_cast<double>((prefix64[g + 3 * a] - prefix64[g]) -
+                                        3.0L * (prefix64[g + 2 * a] - prefix64[g + a]));
+      }
+      const std::size_t lag = m / columns * kTileWidth;
+      double sum = sum_sq_window_tile_rows(tile.data(), lag, starts.data(), full_rows);
+      for (std::size_t r = full_rows; r < any_rows; ++r) {  // the ragged last row
+        const double* t0 = tile.data() + r * kTileWidth;
+        const std::size_t valid = std::min(kTileWidth, last - (r * columns + c0) + 1);
+        double v = starts[r];
+        for (std::size_t c = 0; c < valid; ++c) {
+          sum += v * v;
+          const double e_hi = (t0[c + 3 * lag] - 2.0 * t0[c + 2 * lag]) + t0[c + lag];
+          const double e_lo = (t0[c + 2 * lag] - 2.0 * t0[c + lag]) + t0[c];
+          v += e_hi - e_lo;
+        }
+      }
+      out[f] = sum;
+    }
+  };
+  // One slot per (item, factor it covers): large items cover one factor, chunks all small ones,
+  // tiles all far ones.
+  std::vector<std::size_t> slot(items.size() + 1, 0);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const std::size_t covers = items[i].factor == kAllSmall  ? small.size()
+                               : items[i].factor == kFarTile ? far.size()
+                                                             : 1;
+    slot[i + 1] = slot[i] + covers;
+  }
+  std::vector<double> partial(slot.back(), 0.0);
   parallel_for(items.size(), threads, [&](std::size_t i) {
     const Item item = items[i];
-    const std::size_t m = factors[item.factor];
-    long double v = 0.0L;
-    for (std::size_t k = item.begin; k < item.begin + m; ++k) {
-      v += static_cast<long double>(x[k + 2 * m]) - 2.0L * x[k + m] + x[k];
+    if (item.factor == kFarTile) {
+      run_far_tile(item.begin, partial.data() + slot[i]);
+      return;
     }
-    long double sum = 0.0L;
-    for (std::size_t j = item.begin; j < item.end; ++j) {
-      sum += v * v;
-      if (j + 3 * m < n_phase) {
-        v += (static_cast<long double>(x[j + 3 * m]) - x[j]) +
-             3.0L * (static_cast<long double>(x[j + m]) - x[j + 2 * m]);
+    if (item.factor != kAllSmall) {
+      partial[slot[i]] = sum_sq_window_second_difference(x + item.begin, factors[item.factor],
+                                                         item.end - item.begin);
+      return;
+    }
+    for (std::size_t f = 0; f < small.size(); ++f) {
+      const std::size_t m = factors[small[f]];
+      const std::size_t end = std::min(item.end, result.n[small[f]]);
+      const std::size_t segment = segment_of(m);
+      double sum = 0.0;
+      for (std::size_t j = item.begin; j < end; j += segment) {
+        sum += sum_sq_window_second_difference(x + j, m, std::min(end, j + segment) - j);
       }
+      partial[slot[i] + f] = sum;
     }
-    partial[i] = static_cast<double>(sum);
   });
-  for (std::size_t i = 0; i < items.size(); ++i) result.sum_sq[items[i].factor] += partial[i];
+  std::vector<long double> totals(factors.size(), 0.0L);
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    if (items[i].factor == kFarTile) {
+      for (std::size_t f = 0; f < far.size(); ++f) totals[far[f]] += partial[slot[i] + f];
+    } else if (items[i].factor != kAllSmall) {
+      totals[items[i].factor] += partial[slot[i]];
+    } else {
+      for (std::size_t f = 0; f < small.size(); ++f) totals[small[f]] += partial[slot[i] + f];
+    }
+  }
+  for (std::size_t t = 0; t < factors.size(); ++t) result.sum_sq[t] = static_cast<double>(totals[t]);
   return result;
 }
 

@@ -87,6 +87,101 @@ IMUNOISE_CLONES double sum_sq_third_difference(const double* x, std::size_t m,
 
 namespace {
 
+typedef long long Index8 __attribute__((vector_size(64)));
+
+// In-vector inclusive prefix sum of eight lanes (lane i: sum of lanes 0..i), three shift-adds.
+__attribute__((always_inline)) inline Vec8 inclusive_scan(Vec8 v) {
+  const Vec8 zero = {};
+  v += __builtin_shuffle(v, zero, Index8{8, 0, 1, 2, 3, 4, 5, 6});
+  v += __builtin_shuffle(v, zero, Index8{8, 8, 0, 1, 2, 3, 4, 5});
+  v += __builtin_shuffle(v, zero, Index8{8, 8, 8, 8, 0, 1, 2, 3});
+  return v;
+}
+
+__attribute__((always_inline)) inline Vec8 broadcast_last(Vec8 v) {
+  return __builtin_shuffle(v, Index8{7, 7, 7, 7, 7, 7, 7, 7});
+}
+
+}  // namespace
+
+IMUNOISE_CLONES double sum_sq_window_second_difference(const double* x, std::size_t m,
+                                                       std::size_t count, double* second_sum) {
+  const double* x0 = x;
+  const double* x1 = x + m;
+  const double* x2 = x + 2 * m;
+  const double* x3 = x + 3 * m;
+  // v_0, eight lanes then a fixed-order reduction.
+  Vec8 lanes = {};
+  std::size_t i = 0;
+  for (; i + kLanes <= m; i += kLanes) lanes += (load(x2 + i) - 2.0 * load(x1 + i)) + load(x0 + i);
+  double v = ((lanes[0] + lanes[1]) + (lanes[2] + lanes[3])) + ((lanes[4] + lanes[5]) + (lanes[6] + lanes[7]));
+  for (; i < m; ++i) v += (x2[i] - 2.0 * x1[i]) + x0[i];
+  double sum = v * v;
+  // Windows 1 .. count-1: v_{k+1} = v_k + inc_k, inc_k = e_{k+m} - e_k, k = 0 .. count-2.
+  const std::size_t steps = count - 1;
+  Vec8 acc[2] = {};
+  Vec8 acc_e[2] = {};
+  Vec8 carry = {v, v, v, v, v, v, v, v};
+  std::size_t k = 0;
+  for (; k + 2 * kLanes <= steps; k += 2 * kLanes) {
+    for (std::size_t u = 0; u < 2; ++u) {
+      const std::size_t j = k + u * kLanes;
+      const Vec8 a1 = load(x1 + j), a2 = load(x2 + j);
+      const Vec8 e = (a2 - 2.0 * a1) + load(x0 + j);
+      const Vec8 inc = ((load(x3 + j) - 2.0 * a2) + a1) - e;
+      const Vec8 prefix = inclusive_scan(inc);
+      const Vec8 w = carry + prefix;
+      acc[u] += w * w;
+      acc_e[u] += e * e;
+      carry += broadcast_last(prefix);
+    }
+  }
+  const Vec8 s = acc[0] + acc[1];
+  sum += ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+  const Vec8 se = acc_e[0] + acc_e[1];
+  double e_sum = ((se[0] + se[1]) + (se[2] + se[3])) + ((se[4] + se[5]) + (se[6] + se[7]));
+  v = carry[0];
+  for (; k < steps; ++k) {
+    const double e = (x2[k] - 2.0 * x1[k]) + x0[k];
+    v += ((x3[k] - 2.0 * x2[k]) + x1[k]) - e;
+    sum += v * v;
+    e_sum += e * e;
+  }
+  if (second_sum != nullptr) *second_sum = e_sum;
+  return sum;
+}
+
+IMUNOISE_CLONES double sum_sq_window_tile_rows(const double* tile, std::size_t lag,
+                                               const double* v0, std::size_t rows) {
+  constexpr std::size_t kWidth = 64;
+  // Lane 7 of the last vector is the window at column 64: the next row's start, not this row's.
+  const Vec8 last_mask = {1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 0.0};
+  Vec8 acc[2] = {};
+  double first = 0.0;
+  for (std::size_t r = 0; r < rows; ++r) {
+    const double* t0 = tile + r * kWidth;
+    const double* t1 = t0 + lag;
+    const double* t2 = t0 + 2 * lag;
+    const double* t3 = t0 + 3 * lag;
+    const double v = v0[r];
+    first += v * v;
+    Vec8 carry = {v, v, v, v, v, v, v, v};
+    for (std::size_t k = 0; k < kWidth; k += kLanes) {
+      const Vec8 a1 = load(t1 + k), a2 = load(t2 + k);
+      const Vec8 inc = ((load(t3 + k) - 2.0 * a2) + a1) - ((a2 - 2.0 * a1) + load(t0 + k));
+      const Vec8 prefix = inclusive_scan(inc);
+      Vec8 w = carry + prefix;
+      if (k + kLanes == kWidth) w *= last_mask;
+      acc[(k / kLanes) & 1] += w * w;
+      carry += broadcast_last(prefix);
+    }
+  }
+  const Vec8 s = acc[0] + acc[1];
+  return first + (((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7])));
+}
+
+namespace {
+
 // The six third differences z_{r+km} (k = 0..5) as combinations of the subsequence prefix P at
 // t = 3m-r, 2m-r, m-r, r, r+m, r+2m (in that order), plus gamma_k times 2T, T = P(3m): the prefix
 // of the 9m reflected sequence (less a constant) at r + k m, k = 0..8, is -P(3m-r), -P(2m-r),

@@ -12,6 +12,24 @@ double sum_sq_second_difference(const double* x, std::size_t m, std::size_t coun
 /// sum_{k<count} (x[k+3m] - 3 x[k+2m] + 3 x[k+m] - x[k])^2
 double sum_sq_third_difference(const double* x, std::size_t m, std::size_t count);
 
+/// Modified-Allan window sums: with e_i = x[i+2m] - 2 x[i+m] + x[i] and the window
+/// v_j = sum_{i=j}^{j+m-1} e_i, returns sum_{j<count} v_j^2 (count >= 1). Reads x[0 .. count-2+3m].
+/// v_0 is summed directly (O(m)); v_{j+1} = v_j + (e_{j+m} - e_j) then runs eight windows per
+/// step as a vector prefix sum. Each e is formed as (x[i+2m] - 2 x[i+m]) + x[i], exact for
+/// slowly varying phase, so a pure rate ramp (constant e) leaves every increment exactly zero.
+/// Also returns, in *second_sum when given, sum_{k<count-1} e_k^2 (the overlapping Allan terms
+/// the recursion reads anyway: R(n) in noise_id.cpp needs both sums from one pass).
+double sum_sq_window_second_difference(const double* x, std::size_t m, std::size_t count,
+                                       double* second_sum = nullptr);
+
+/// Modified-Allan windows down a gathered tile (difference_sums.cpp): rows of 64 phase samples,
+/// row r + A starting m samples after row r (lag = 64 A elements). For each of `rows` rows, the
+/// windows v(r, c), c = 0..63, with v(r, 0) = v0[r] and v(r, c+1) = v(r, c) + e_{c+m} - e_c
+/// (e the second difference at lag m, read down the tile); returns the sum of their squares.
+/// Reads tile rows up to rows - 1 + 3A, all 64 columns.
+double sum_sq_window_tile_rows(const double* tile, std::size_t lag, const double* v0,
+                               std::size_t rows);
+
 /// The mtot/htot kernel (total.hpp) for `count` consecutive 3m-point subsequences of a sequence
 /// u, given its prefix sums ul[i] = sum_{k<i} (u[k] - c - s k) for any c, s (a constant and a
 /// linear trend in u leave the result unchanged; removing the local ones keeps ul small):

@@ -1,9 +1,11 @@
 #include "imunoise/io/text_reader.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstring>
 #include <istream>
@@ -14,6 +16,7 @@
 
 #include "imunoise/error.hpp"
 #include "imunoise/io/timestamps.hpp"
+#include "../core/parallel.hpp"  // the library's fork-join helper
 
 namespace imunoise::io {
 namespace {
@@ -192,6 +195,15 @@ class LineSplitter {
     std::size_t pos = 0;
     while (pos < size) {
       if (line_end_ == LineEnd::unknown && !decide_line_end(data, pos, size, at_end)) break;
+      if (line_end_ == LineEnd::lf && on_line_.bulk_ready()) {
+        // Every complete line left in the block at once (the parser may split them up).
+        const void* last = memrchr(data + pos, '\n', size - pos);
+        if (last == nullptr) break;
+        const auto end = static_cast<std::size_t>(static_cast<const char*>(last) - data) + 1;
+        on_line_.bulk(data + pos, end - pos);
+        pos = end;
+        continue;
+      }
       const char terminator = line_end_ == LineEnd::cr ? '\r' : '\n';
       const void* hit = std::memchr(data + pos, terminator, size - pos);
       if (hit == nullptr) break;
@@ -251,6 +263,236 @@ void split_blocks(Read&& read, std::size_t block_bytes, OnLine& on_line) {
   }
 }
 
+// --- bulk row parser -----------------------------------------------------------------------------
+// Plain rows only: cells that are numbers, separated as the first row was, blanks around them.
+// Anything else is left to the line-by-line parser, so this parser never has to judge an error.
+
+struct RowLayout {
+  Separator separator;
+  std::size_t columns;
+  std::size_t value_column;
+  std::optional<std::size_t> time_column;
+};
+
+struct PlainRows {
+  std::vector<double> values;
+  std::vector<SplitTime> times;
+  std::string first_time;  ///< the first time cell as written
+  std::size_t rows = 0;    ///< rows parsed = lines consumed
+  void clear() {
+    values.clear();
+    times.clear();
+    first_time.clear();
+    rows = 0;
+  }
+};
+
+inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
+// Whether the eight bytes of `word` are all '0'..'9' (each high nibble 3, and adding 6 keeps it).
+inline bool eight_digits(std::uint64_t word) {
+  return (word & 0xF0F0F0F0F0F0F0F0u) == 0x3030303030303030u &&
+         ((word + 0x0606060606060606u) & 0xF0F0F0F0F0F0F0F0u) == 0x3030303030303030u;
+}
+
+// The value of eight ASCII digits read little-endian (first digit in the lowest byte): pairs,
+// then quads, then the whole, each step one multiply.
+// Skips a run of digits, eight bytes at a time while eight more bytes are in [p, end).
+inline const char* skip_digits(const char* p, const char* end) {
+  while (end - p >= 8) {
+    std::uint64_t word;
+    std::memcpy(&word, p, 8);
+    if (!eight_digits(word)) break;
+    p += 8;
+  }
+  while (is_digit(*p)) ++p;
+  return p;
+}
+
+// End of a number of the form [+-] digits [. digits] [(e|E) [+-] digits] (a digit in the
+// mantissa required) starting at p, or nullptr. Every text of this form is a number for
+// parse_number (fast_float), so a cell that passes here is one the line parser accepts.
+inline const char* skip_number(const char* p, const char* end) {
+  if (*p == '-' || (*p == '+' && (is_digit(p[1]) || p[1] == '.'))) ++p;
+  const char* mantissa = p;
+  p = skip_digits(p, end);
+  std::size_t digits = static_cast<std::size_t>(p - mantissa);
+  if (*p == '.') {
+    const char* fraction = ++p;
+    p = skip_digits(p, end);
+    digits += static_cast<std::size_t>(p - fraction);
+  }
+  if (digits == 0) return nullptr;
+  if (*p == 'e' || *p == 'E') {
+    const char* q = p + 1;
+    if (*q == '+' || *q == '-') ++q;
+    if (!is_digit(*q)) return nullptr;
+    while (is_digit(*q)) ++q;
+    p = q;
+  }
+  return p;
+}
+
+// A decimal number of the skip_number form, scanned once: its end, and when it is simple
+// enough its exact value by Clinger's fast path (at most 19 digits whose value is below 2^53,
+// |power of ten| <= 22: the integer and the power are exact doubles, so one multiplication or
+// division rounds once, correctly, to the same bits as strtod and fast_float). `exact` is false
+// when the caller must convert the text with fast_float instead.
+struct Scanned {
+  const char* end = nullptr;  // nullptr: not a number of that form
+  double value = 0.0;
+  bool exact = false;
+};
+
+inline std::uint64_t eight_digit_value(std::uint64_t word) {
+  word = ((word & 0x0F0F0F0F0F0F0F0Fu) * 2561) >> 8;
+  word = ((word & 0x00FF00FF00FF00FFu) * 6553601) >> 16;
+  return ((word & 0x0000FFFF0000FFFFu) * 42949672960001u) >> 32;
+}
+
+// Appends the digits at p to mantissa (wrapping past 19 digits: the caller then does not use
+// it), eight at a time while eight bytes remain before end; returns the end of the digits.
+inline const char* read_digits(const char* p, const char* end, std::uint64_t& mantissa) {
+  while (end - p >= 8) {
+    std::uint64_t word;
+    std::memcpy(&word, p, 8);
+    if (!eight_digits(word)) break;
+    mantissa = mantissa * 100000000u + eight_digit_value(word);
+    p += 8;
+  }
+  while (is_digit(*p)) {
+    mantissa = mantissa * 10 + static_cast<std::uint64_t>(*p - '0');
+    ++p;
+  }
+  return p;
+}
+
+inline Scanned scan_decimal(const char* p, const char* end) {
+  static constexpr double kPowers[] = {1e0,  1e1,  1e2,  1e3,  1e4,  1e5,  1e6,  1e7,
+                                       1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
+                                       1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
+  Scanned out;
+  bool negative = false;
+  if (*p == '-') {
+    negative = true;
+    ++p;
+  } else if (*p == '+' && (is_digit(p[1]) || p[1] == '.')) {
+    ++p;
+  }
+  std::uint64_t mantissa = 0;
+  const char* integer = p;
+  p = read_digits(p, end, mantissa);
+  long long exponent = 0;
+  std::size_t total = static_cast<std::size_t>(p - integer);
+  if (*p == '.') {
+    ++p;
+    const char* fraction = p;
+    p = read_digits(p, end, mantissa);
+    const auto fraction_digits = static_cast<std::size_t>(p - fraction);
+    total += fraction_digits;
+    exponent = -static_cast<long long>(fraction_digits);
+  }
+  if (total == 0) return out;
+  if (*p == 'e' || *p == 'E') {
+    const char* q = p + 1;
+    bool negative_exponent = false;
+    if (*q == '+' || *q == '-') negative_exponent = *q++ == '-';
+    if (!is_digit(*q)) return out;
+    long long written = 0;
+    const char* first = q;
+    while (is_digit(*q)) {
+      if (q - first < 6) written = written * 10 + (*q - '0');
+      ++q;
+    }
+    if (q - first >= 6) written = 1'000'000;  // far outside the fast path either way
+    exponent += negative_exponent ? -written : written;
+    p = q;
+  }
+  out.end = p;
+  if (total <= 19 && mantissa <= (std::uint64_t{1} << 53) && exponent >= -22 && exponent <= 22) {
+    const auto m = static_cast<double>(mantissa);
+    const double magnitude = exponent >= 0 ? m * kPowers[exponent] : m / kPowers[-exponent];
+    out.value = negative ? -magnitude : magnitude;
+    out.exact = true;
+  }
+  return out;
+}
+
+// Parses the plain rows of [begin, end) (complete lines, the last ending in '\n') into `out` and
+// returns where the first other line starts (end when all were plain). A line that is not plain
+// stores nothing.
+std::size_t parse_plain_rows(const char* begin, const char* end, const RowLayout& layout,
+                             PlainRows& out) {
+  const bool words = layout.separator == Separator::whitespace;
+  const char sep = separator_char(layout.separator);
+  // Blanks the line parser trims around a cell; a tab is the separator in tab-separated files.
+  const auto blank = [sep](char c) { return c == ' ' || (c == '\t' && sep != '\t'); };
+  const std::size_t last_column = layout.columns - 1;
+  const std::size_t time_column = layout.time_column ? *layout.time_column : layout.columns;
+  const char* p = begin;
+  while (p < end) {
+    const char* q = p;
+    while (blank(*q)) ++q;
+    double value = 0.0;
+    SplitTime time;
+    const char* time_begin = nullptr;
+    const char* time_end = nullptr;
+    bool plain = true;
+    for (std::size_t column = 0; plain; ++column) {
+      if (column == layout.value_column) {
+        const Scanned number = scan_decimal(q, end);
+        if (number.end == nullptr) {
+          plain = false;
+        } else if (number.exact) {
+          value = number.value;
+          q = number.end;
+        } else {  // the same text, converted as parse_number does
+          const char* first = q;
+          if (*first == '+') ++first;
+          const auto result = fast_float::from_chars(first, number.end, value);
+          plain = result.ec == std::errc() && result.ptr == number.end && std::isfinite(value);
+          q = number.end;
+        }
+      } else if (column == time_column) {
+        const char* stop = q;
+        while (!blank(*stop) && *stop != sep && *stop != '\r' && *stop != '\n') ++stop;
+        const auto parsed = parse_split_time(std::string_view(q, static_cast<std::size_t>(stop - q)));
+        plain = parsed && is_finite(*parsed);
+        if (plain) time = *parsed;
+        time_begin = q;
+        time_end = stop;
+        q = stop;
+      } else {
+        q = skip_number(q, end);
+        plain = q != nullptr;
+      }
+      if (!plain) break;
+      const char* after = q;
+      while (blank(*q)) ++q;
+      if (column == last_column) break;
+      if (words) {
+        plain = q != after;  // cells are separated by at least one blank
+      } else if (*q == sep) {  // never step past a '\n': it may end the buffer
+        ++q;
+        while (blank(*q)) ++q;
+      } else {
+        plain = false;
+      }
+    }
+    if (!plain) break;
+    if (*q == '\r') ++q;
+    if (*q != '\n') break;
+    out.values.push_back(value);
+    if (time_begin != nullptr) {
+      if (out.times.empty()) out.first_time.assign(time_begin, time_end);
+      out.times.push_back(time);
+    }
+    ++out.rows;
+    p = q + 1;
+  }
+  return static_cast<std::size_t>(p - begin);
+}
+
 // The state machine over lines: first content line (header or data), then data rows.
 class TextParser {
  public:
@@ -268,6 +510,49 @@ class TextParser {
       first_content_line(content);
     } else {
       data_row(content);
+    }
+  }
+
+  /// Whether whole blocks may go to bulk(): the first row has fixed the layout.
+  [[nodiscard]] bool bulk_ready() const { return options_.bulk_rows && out_.column_count != 0; }
+
+  /// Complete LF-terminated lines (size > 0, data[size - 1] == '\n'): split at line ends into
+  /// one range per thread, parsed by parse_plain_rows side by side, and taken in file order;
+  /// a line the row parser leaves goes through operator() with its exact line number.
+  void bulk(const char* data, std::size_t size) {
+    const RowLayout layout{out_.separator, out_.column_count, out_.value_column, out_.time_column};
+    const unsigned threads = detail::resolve_threads(options_.threads);
+    const std::size_t parts = std::clamp<std::size_t>(size / kMinPartBytes, 1, threads);
+    std::vector<std::size_t> cuts(parts + 1, size);
+    cuts[0] = 0;
+    for (std::size_t w = 1; w < parts; ++w) {
+      const std::size_t from = std::max(cuts[w - 1], size * w / parts);
+      const void* newline = std::memchr(data + from, '\n', size - from);
+      cuts[w] = newline == nullptr ? size
+                                   : static_cast<std::size_t>(static_cast<const char*>(newline) - data) + 1;
+    }
+    // The parts' buffers live as long as the parser: fresh ones for every block would cost
+    // the kernel's page zeroing again and again.
+    if (parts_.size() < parts) parts_.resize(parts);
+    std::vector<std::size_t> stops(parts);
+    detail::parallel_for(parts, threads, [&](std::size_t w) {
+      parts_[w].clear();
+      stops[w] = parse_plain_rows(data + cuts[w], data + cuts[w + 1], layout, parts_[w]);
+    });
+    for (std::size_t w = 0; w < parts; ++w) {
+      take(parts_[w]);
+      const char* p = data + cuts[w] + stops[w];
+      const char* const end = data + cuts[w + 1];
+      while (p < end) {
+        const char* newline = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
+        std::string_view line(p, static_cast<std::size_t>(newline - p));
+        if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+        (*this)(line);
+        p = newline + 1;
+        parts_[w].clear();
+        p += parse_plain_rows(p, end, layout, parts_[w]);
+        take(parts_[w]);
+      }
     }
   }
 
@@ -496,6 +781,24 @@ class TextParser {
          "give every row the same number of fields, or comment the row out with '#'");
   }
 
+  // Rows from parse_plain_rows that follow the lines read so far.
+  void take(PlainRows& rows) {
+    if (rows.rows == 0) return;
+    if (out_.first_data_line == 0) out_.first_data_line = line_number_ + 1;
+    out_.lines.add(rows_, line_number_ + 1);
+    out_.values.insert(out_.values.end(), rows.values.begin(), rows.values.end());
+    if (out_.time_column) {
+      if (times_.empty()) out_.time_origin = rows.first_time;
+      times_.insert(times_.end(), rows.times.begin(), rows.times.end());
+    }
+    line_number_ += rows.rows;
+    rows_ += rows.rows;
+  }
+
+  // Smallest byte range worth a thread of its own.
+  static constexpr std::size_t kMinPartBytes = std::size_t{1} << 18;
+
+  std::vector<PlainRows> parts_;  // bulk(): one per byte range
   TextReadOptions options_;
   TextColumns out_;
   std::size_t line_number_ = 0;

@@ -20,6 +20,8 @@ struct ConfidenceOptions {
   /// Noise type alpha to use at every tau instead of identifying it (--noise-type); must be in
   /// the estimator's domain (edf.hpp).
   std::optional<int> forced_alpha;
+  /// Worker threads for the noise identification (0: all cores); results do not depend on it.
+  unsigned threads = 0;
 };
 
 /// What was done at one point (same order as the points).

@@ -21,11 +21,15 @@
 // when no line applies), names the column and quotes the offending text (at most 40
 // characters), and ends with "fix: ...". Nothing is skipped silently.
 //
-// Speed: input is read in blocks (1 MiB by default) and parsed in place with fast_float; memory
-// is the output vectors plus one block. Measured (g++ 12 -O3, one core, file in page cache,
-// best of 3): 370 MB/s reading one column of a 146 MB CSV "t,gx,gy" of 4e6 rows with
-// 10-decimal values, 260 MB/s when the time column is read too, 315 MB/s on a single column
-// of 17-digit values.
+// Speed: input is read in blocks (8 MiB by default) and parsed in place (fast_float, or an exact
+// fast path for decimals of at most 19 digits); memory is the output vectors plus one block. Once the first data row has fixed the layout, each
+// block's complete lines are split at line ends into one byte range per thread and parsed by a
+// row parser that only knows plain rows (numbers, separators, blanks around them): it converts
+// the value column (and the time column) and only checks that the other cells are numbers.
+// Any line it does not take (comment, blank, quote, NaN, ragged, error) goes to the line-by-line
+// parser with the exact line number and row index, so values and messages are the same as
+// when reading line by line (tested). Measured in bench/bench_text_reader.cpp and
+// docs/performance.md.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -92,7 +96,15 @@ struct TextReadOptions {
   std::optional<Unit> time_unit;
   /// Size of the blocks read from the file or stream (bytes, >= 1). Tuning only: results do not
   /// depend on it.
-  std::size_t block_bytes = std::size_t{1} << 20;
+  /// 8 MiB: large enough that starting the threads of a block costs little against parsing it.
+  std::size_t block_bytes = std::size_t{1} << 23;
+  /// Threads that parse the rows of a block side by side (0: all cores). Tuning only: values,
+  /// line numbers and error messages do not depend on it.
+  unsigned threads = 0;
+  /// Parse plain rows (numbers and separators only) with the bulk row parser, falling back to
+  /// the line-by-line parser for any other line. Tuning and testing only: results and error
+  /// messages are identical either way; false gives the plain single-threaded line-by-line read.
+  bool bulk_rows = true;
 };
 
 /// The columns read from a text file, as written (no unit conversion of values).
