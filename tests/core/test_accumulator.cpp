@@ -164,7 +164,9 @@ TEST_P(Accumulate, ByteImageRoundTrips) {
   const auto want = a.deviations(kTau0), got = a2.deviations(kTau0);
   for (std::size_t i = 0; i < want.size(); ++i) {
     EXPECT_EQ(got[i].n, want[i].n);
-    if (want[i].n > 0) EXPECT_EQ(got[i].dev, want[i].dev);
+    if (want[i].n > 0) {
+      EXPECT_EQ(got[i].dev, want[i].dev);
+    }
   }
   auto bytes = a.to_bytes();
   bytes.pop_back();
