@@ -8,5 +8,6 @@ namespace imunoise::cli {
 void setup_dev(CLI::App& app);
 void setup_simulate(CLI::App& app);
 void setup_fit(CLI::App& app);
+void setup_fleet(CLI::App& app);
 
 }  // namespace imunoise::cli

@@ -80,7 +80,7 @@ void send_bytes(int destination, int tag, const std::vector<std::uint8_t>& bytes
 std::vector<std::uint8_t> receive_bytes(int source, int tag, int* actual_source) {
   std::uint64_t n = 0;
   MPI_Status status;
-  MPI_Recv(&n, 1, MPI_UINT64_T, source, tag, MPI_COMM_WORLD, &status);
+  MPI_Recv(&n, 1, MPI_UINT64_T, source < 0 ? MPI_ANY_SOURCE : source, tag, MPI_COMM_WORLD, &status);
   if (actual_source != nullptr) *actual_source = status.MPI_SOURCE;
   std::vector<std::uint8_t> bytes(n);
   for (std::size_t at = 0; at < bytes.size(); at += kPiece) {

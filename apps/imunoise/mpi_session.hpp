@@ -31,7 +31,7 @@ double broadcast(double value);
 /// failed has printed its message; all ranks then leave together instead of hanging).
 bool all_ok(bool ok);
 
-/// Point-to-point byte messages (any length; sent in pieces below 2^31 bytes).
+/// Point-to-point byte messages (any length; sent in pieces below 2^31 bytes); source -1 is any.
 void send_bytes(int destination, int tag, const std::vector<std::uint8_t>& bytes);
 std::vector<std::uint8_t> receive_bytes(int source, int tag, int* actual_source = nullptr);
 
