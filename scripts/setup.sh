@@ -12,6 +12,7 @@ packages=(
   libboost-dev libeigen3-dev libyaml-cpp-dev
   clang libclang-rt-14-dev
   python3-dev python3-numpy python3-pytest pybind11-dev
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()
