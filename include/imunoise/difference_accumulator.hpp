@@ -71,6 +71,7 @@ class DifferenceAccumulator {
 
   [[nodiscard]] std::size_t span_of(std::size_t m) const;
   void push_relative(std::span<const double> rel);
+  void add_new_terms(const std::vector<double>& combined, std::size_t global0, std::size_t first_end);
   void add_range(const double* x, std::size_t global0, std::size_t t, std::size_t k_begin,
                  std::size_t k_end);
   void append_head(std::span<const double> rel, double level);

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "imunoise/error.hpp"
+#include "difference_sums.hpp"
 #include "kernels.hpp"
 
 namespace imunoise {
@@ -170,6 +171,19 @@ void DifferenceAccumulator::append_head(std::span<const double> rel, double leve
   }
 }
 
+// Adds, for each factor, the terms of `combined` whose stencil ends at index >= first_end (the
+// ones not complete before).
+void DifferenceAccumulator::add_new_terms(const std::vector<double>& combined, std::size_t global0,
+                                          std::size_t first_end) {
+  for (std::size_t t = 0; t < factors_.size(); ++t) {
+    const std::size_t span = span_of(factors_[t]);
+    if (combined.size() <= span) continue;
+    // Terms not complete before: their stencil ends at index >= first_end.
+    const std::size_t k_begin = first_end > span ? first_end - span : 0;
+    add_range(combined.data(), global0, t, k_begin, combined.size() - span);
+  }
+}
+
 // rel: the next samples minus the current last sample.
 void DifferenceAccumulator::push_relative(std::span<const double> rel) {
   if (rel.empty()) return;
@@ -179,12 +193,19 @@ void DifferenceAccumulator::push_relative(std::span<const double> rel) {
   combined.insert(combined.end(), rel.begin(), rel.end());
   const std::size_t first_end = tail_rel_.size();
   const std::size_t global0 = first_index_ + size_ - tail_rel_.size();
-  for (std::size_t t = 0; t < factors_.size(); ++t) {
-    const std::size_t span = span_of(factors_[t]);
-    if (combined.size() <= span) continue;
-    // Terms not complete before: their stencil ends at index >= first_end.
-    const std::size_t k_begin = first_end > span ? first_end - span : 0;
-    add_range(combined.data(), global0, t, k_begin, combined.size() - span);
+  if (first_end == 1 && kind_ != Kind::strided) {
+    // The first push (a whole slice under --mpi): every term of `combined` is new, exactly the
+    // one-pass sums, whose cache-blocked engine visits all factors in one pass over memory
+    // (one kernel call per factor over a long slice is several times slower).
+    const auto sums = kind_ == Kind::overlapping
+                          ? detail::overlapping_difference_sums(combined, order_, factors_, 1)
+                          : detail::modified_difference_sums(combined, factors_, 1);
+    for (std::size_t t = 0; t < factors_.size(); ++t) {
+      sum_sq_[t] += sums.sum_sq[t];
+      count_[t] += sums.n[t];
+    }
+  } else {
+    add_new_terms(combined, global0, first_end);
   }
   append_head(rel, tail_last_ - head_first_);
   const std::size_t keep = std::min(window_, combined.size());
