@@ -174,13 +174,11 @@ DistributedCurves distributed_deviations(const InputOptions& input,
         estimator_averaging_factors(estimator, grid, out.record.rate_hz, out.n_phase);
     DifferenceAccumulator acc(estimator, factors, slice.first_phase);
     acc.push(slice.phase_si);
-    const auto merged = mpi::tree_merge(
-        acc.to_bytes(), [](const std::vector<std::uint8_t>& mine, const std::vector<std::uint8_t>& theirs) {
-          auto left = DifferenceAccumulator::from_bytes(mine);
-          left.merge(DifferenceAccumulator::from_bytes(theirs));
-          return left.to_bytes();
-        });
-    if (out.root) out.curves.push_back(DifferenceAccumulator::from_bytes(merged).deviations(tau0_s));
+    mpi::tree_merge([&acc] { return acc.to_bytes(); },
+                    [&acc](const std::vector<std::uint8_t>& theirs) {
+                      acc.merge(DifferenceAccumulator::from_bytes(theirs));
+                    });
+    if (out.root) out.curves.push_back(acc.deviations(tau0_s));
   }
   return out;
 }

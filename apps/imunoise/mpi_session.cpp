@@ -130,22 +130,18 @@ void abort_all(const std::string& message) {
 
 #endif
 
-std::vector<std::uint8_t> tree_merge(
-    std::vector<std::uint8_t> mine,
-    const std::function<std::vector<std::uint8_t>(const std::vector<std::uint8_t>&,
-                                                  const std::vector<std::uint8_t>&)>& merge) {
+void tree_merge(const std::function<std::vector<std::uint8_t>()>& encode,
+                const std::function<void(const std::vector<std::uint8_t>&)>& absorb) {
   constexpr int kTag = 17;
   for (int step = 1; step < g_world.size; step *= 2) {
     if (g_world.rank % (2 * step) == step) {
-      send_bytes(g_world.rank - step, kTag, mine);
-      return mine;
+      send_bytes(g_world.rank - step, kTag, encode());
+      return;
     }
     if (g_world.rank % (2 * step) == 0 && g_world.rank + step < g_world.size) {
-      const auto theirs = receive_bytes(g_world.rank + step, kTag);
-      mine = merge(mine, theirs);
+      absorb(receive_bytes(g_world.rank + step, kTag));
     }
   }
-  return mine;
 }
 
 }  // namespace imunoise::cli::mpi

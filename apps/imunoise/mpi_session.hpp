@@ -35,13 +35,11 @@ bool all_ok(bool ok);
 void send_bytes(int destination, int tag, const std::vector<std::uint8_t>& bytes);
 std::vector<std::uint8_t> receive_bytes(int source, int tag, int* actual_source = nullptr);
 
-/// Binary-tree reduction of byte images: at level s, rank r (r % 2s == 0) receives the image of
-/// rank r + s and calls merge(mine, theirs) (theirs holds the records that follow mine).
-/// log2(P) levels; the result is on rank 0 (other ranks get their last partial image).
-std::vector<std::uint8_t> tree_merge(
-    std::vector<std::uint8_t> mine,
-    const std::function<std::vector<std::uint8_t>(const std::vector<std::uint8_t>&,
-                                                  const std::vector<std::uint8_t>&)>& merge);
+/// Binary-tree reduction: at level s, rank r (r % 2s == 0) receives the image of rank r + s
+/// (the records that follow its own) and hands it to absorb(); rank r % 2s == s sends
+/// encode() to rank r - s and leaves. log2(P) levels; rank 0 ends with everything absorbed.
+void tree_merge(const std::function<std::vector<std::uint8_t>()>& encode,
+                const std::function<void(const std::vector<std::uint8_t>&)>& absorb);
 
 /// Ends every rank with exit code 1 after printing `message` (MPI_Abort when MPI is running).
 [[noreturn]] void abort_all(const std::string& message);

@@ -70,6 +70,7 @@ class DifferenceAccumulator {
   enum class Kind { overlapping, strided, modified };
 
   [[nodiscard]] std::size_t span_of(std::size_t m) const;
+  void first_push(std::span<const double> phase);
   void push_relative(std::span<const double> rel);
   void add_new_terms(const std::vector<double>& combined, std::size_t global0, std::size_t first_end);
   void add_range(const double* x, std::size_t global0, std::size_t t, std::size_t k_begin,

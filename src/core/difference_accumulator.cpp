@@ -166,9 +166,10 @@ void DifferenceAccumulator::add_range(const double* x, std::size_t global0, std:
 // Head samples are kept relative to the first sample; `level` is the first of `rel`'s
 // reference minus head_first_.
 void DifferenceAccumulator::append_head(std::span<const double> rel, double level) {
-  for (std::size_t i = 0; head_rel_.size() < window_ && i < rel.size(); ++i) {
-    head_rel_.push_back(rel[i] + level);
-  }
+  const std::size_t take = std::min(window_ - std::min(window_, head_rel_.size()), rel.size());
+  const std::size_t old = head_rel_.size();
+  head_rel_.resize(old + take);
+  for (std::size_t i = 0; i < take; ++i) head_rel_[old + i] = rel[i] + level;
 }
 
 // Adds, for each factor, the terms of `combined` whose stencil ends at index >= first_end (the
@@ -193,20 +194,7 @@ void DifferenceAccumulator::push_relative(std::span<const double> rel) {
   combined.insert(combined.end(), rel.begin(), rel.end());
   const std::size_t first_end = tail_rel_.size();
   const std::size_t global0 = first_index_ + size_ - tail_rel_.size();
-  if (first_end == 1 && kind_ != Kind::strided) {
-    // The first push (a whole slice under --mpi): every term of `combined` is new, exactly the
-    // one-pass sums, whose cache-blocked engine visits all factors in one pass over memory
-    // (one kernel call per factor over a long slice is several times slower).
-    const auto sums = kind_ == Kind::overlapping
-                          ? detail::overlapping_difference_sums(combined, order_, factors_, 1)
-                          : detail::modified_difference_sums(combined, factors_, 1);
-    for (std::size_t t = 0; t < factors_.size(); ++t) {
-      sum_sq_[t] += sums.sum_sq[t];
-      count_[t] += sums.n[t];
-    }
-  } else {
-    add_new_terms(combined, global0, first_end);
-  }
+  add_new_terms(combined, global0, first_end);
   append_head(rel, tail_last_ - head_first_);
   const std::size_t keep = std::min(window_, combined.size());
   const double last = combined.back();
@@ -216,14 +204,52 @@ void DifferenceAccumulator::push_relative(std::span<const double> rel) {
   size_ += rel.size();
 }
 
+// The first push (a whole slice under --mpi, which starts at 0) needs no copy: every term is
+// new, so the sums run on the samples as given, with the cache-blocked one-pass engine
+// (all factors in one pass over memory) for the overlapping and modified sums; only the edges
+// are copied.
+void DifferenceAccumulator::first_push(std::span<const double> phase) {
+  if (kind_ == Kind::strided) {
+    for (std::size_t t = 0; t < factors_.size(); ++t) {
+      const std::size_t span = span_of(factors_[t]);
+      if (phase.size() > span) add_range(phase.data(), first_index_, t, 0, phase.size() - span);
+    }
+  } else {
+    const auto sums = kind_ == Kind::overlapping
+                          ? detail::overlapping_difference_sums(phase, order_, factors_, 1)
+                          : detail::modified_difference_sums(phase, factors_, 1);
+    for (std::size_t t = 0; t < factors_.size(); ++t) {
+      sum_sq_[t] += sums.sum_sq[t];
+      count_[t] += sums.n[t];
+    }
+  }
+  const std::size_t keep = std::min(window_, phase.size());
+  head_first_ = phase.front();
+  tail_last_ = phase.back();
+  head_rel_.resize(keep);
+  tail_rel_.resize(keep);
+  for (std::size_t i = 0; i < keep; ++i) {
+    head_rel_[i] = phase[i] - head_first_;
+    tail_rel_[i] = phase[phase.size() - keep + i] - tail_last_;
+  }
+  size_ = phase.size();
+}
+
 void DifferenceAccumulator::push(std::span<const double> phase) {
   if (phase.empty()) return;
   if (size_ == 0) {
-    head_first_ = tail_last_ = phase.front();
-    head_rel_.assign(1, 0.0);
-    tail_rel_.assign(1, 0.0);
-    size_ = 1;
-    phase = phase.subspan(1);
+    if (phase.front() == 0.0) {  // an integrated slice starts at 0: use it as it is
+      first_push(phase);
+      return;
+    }
+    // Otherwise relative to the first sample, so the terms never see the absolute level.
+    const double level = phase.front();
+    std::vector<double> rel(phase.begin(), phase.end());
+    for (auto& v : rel) v -= level;
+    first_push(rel);
+    head_first_ += level;
+    tail_last_ += level;
+    return;
   }
   std::vector<double> rel(phase.begin(), phase.end());
   for (auto& v : rel) v -= tail_last_;

@@ -33,6 +33,11 @@ struct Fleet {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     files.push_back(odd);
   }
+  /// One fleet for every test (its files are only read; each test writes its own outputs).
+  static const Fleet& shared() {
+    static const Fleet fleet;
+    return fleet;
+  }
   std::vector<std::string> args(const std::string& out, std::vector<std::string> extra = {}) const {
     std::vector<std::string> a{"fleet"};
     a.insert(a.end(), files.begin(), files.end());
@@ -44,8 +49,9 @@ struct Fleet {
 };
 
 TEST(FleetCli, SerialRunReportsDistributionsOutliersAndGoesOnPastABadFile) {
-  Fleet fleet;
-  const std::string out = fleet.dir.file("out");
+  const Fleet& fleet = Fleet::shared();
+  TempDir out_dir;
+  const std::string out = out_dir.file("out");
   const auto r = run_cli(fleet.args(out));
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_NE(r.err.find("broken.txt:3"), std::string::npos) << r.err;
@@ -80,8 +86,9 @@ TEST(FleetCli, SerialRunReportsDistributionsOutliersAndGoesOnPastABadFile) {
 }
 
 TEST(FleetCli, StrictStopsAtTheFirstBadFile) {
-  Fleet fleet;
-  const auto r = run_cli(fleet.args(fleet.dir.file("out"), {"--strict"}));
+  const Fleet& fleet = Fleet::shared();
+  TempDir out_dir;
+  const auto r = run_cli(fleet.args(out_dir.file("out"), {"--strict"}));
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("broken.txt:3"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--strict"), std::string::npos) << r.err;
@@ -91,34 +98,37 @@ class FleetRanks : public ::testing::TestWithParam<int> {};
 
 TEST_P(FleetRanks, OutputsAreTheSerialRunsBytes) {
   IMUNOISE_REQUIRE_MPI();
-  Fleet fleet;
-  const auto serial = run_cli(fleet.args(fleet.dir.file("serial")));
+  const Fleet& fleet = Fleet::shared();
+  TempDir out_dir;
+  const auto serial = run_cli(fleet.args(out_dir.file("serial")));
   ASSERT_EQ(serial.exit_code, 0) << serial.err;
-  const auto parallel = run_mpi(GetParam(), fleet.args(fleet.dir.file("parallel")));
+  const auto parallel = run_mpi(GetParam(), fleet.args(out_dir.file("parallel")));
   ASSERT_EQ(parallel.exit_code, 0) << parallel.err;
-  EXPECT_EQ(slurp(fleet.dir.file("parallel/fleet.json")), slurp(fleet.dir.file("serial/fleet.json")));
-  EXPECT_EQ(slurp(fleet.dir.file("parallel/fleet.csv")), slurp(fleet.dir.file("serial/fleet.csv")));
+  EXPECT_EQ(slurp(out_dir.file("parallel/fleet.json")), slurp(out_dir.file("serial/fleet.json")));
+  EXPECT_EQ(slurp(out_dir.file("parallel/fleet.csv")), slurp(out_dir.file("serial/fleet.csv")));
   EXPECT_NE(parallel.err.find("broken.txt:3"), std::string::npos) << parallel.err;
 }
 
 TEST_P(FleetRanks, StrictStopsEveryRank) {
   IMUNOISE_REQUIRE_MPI();
-  Fleet fleet;
-  const auto r = run_mpi(GetParam(), fleet.args(fleet.dir.file("out"), {"--strict"}), 60);
+  const Fleet& fleet = Fleet::shared();
+  TempDir out_dir;
+  const auto r = run_mpi(GetParam(), fleet.args(out_dir.file("out"), {"--strict"}), 60);
   EXPECT_EQ(r.exit_code, 1) << r.err;
   EXPECT_NE(r.err.find("broken.txt:3"), std::string::npos) << r.err;
 }
 
 TEST_P(FleetRanks, ARankThatDiesFailsTheRunWithoutHanging) {
   IMUNOISE_REQUIRE_MPI();
-  Fleet fleet;
-  const auto r = run_mpi(GetParam(), fleet.args(fleet.dir.file("out")), 60,
+  const Fleet& fleet = Fleet::shared();
+  TempDir out_dir;
+  const auto r = run_mpi(GetParam(), fleet.args(out_dir.file("out")), 60,
                          "IMUNOISE_TEST_RANK_DIES_ON=s5.txt");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_NE(r.exit_code, 124) << "the run hung";
   // mpirun names the rank that died and the signal.
   EXPECT_NE(r.err.find("signal 9"), std::string::npos) << r.err;
-  EXPECT_FALSE(std::filesystem::exists(fleet.dir.file("out/fleet.json")));
+  EXPECT_FALSE(std::filesystem::exists(out_dir.file("out/fleet.json")));
 }
 
 INSTANTIATE_TEST_SUITE_P(Fleet, FleetRanks, ::testing::Values(2, 3));
