@@ -27,11 +27,12 @@ long double overlapping_sum(int order, const double* x, std::size_t m, std::size
 }
 
 // mdev: v_k = sum_{i=k}^{k+m-1} (x[i+2m] - 2x[i+m] + x[i]), by the recursion of the one-pass
-// sums (long double, restarted from a direct sum every kBlock starts).
+// sums (long double, restarted from a direct sum every max(kBlock, m) starts).
 long double modified_sum(const double* x, std::size_t m, std::size_t count) {
   long double sum = 0.0L;
-  for (std::size_t begin = 0; begin < count; begin += kBlock) {
-    const std::size_t end = std::min(count, begin + kBlock);
+  const std::size_t block = std::max(kBlock, m);  // a restart costs O(m), as in the one-pass sums
+  for (std::size_t begin = 0; begin < count; begin += block) {
+    const std::size_t end = std::min(count, begin + block);
     long double v = 0.0L;
     for (std::size_t i = begin; i < begin + m; ++i) {
       v += static_cast<long double>(x[i + 2 * m]) - 2.0L * x[i + m] + x[i];
