@@ -10,10 +10,11 @@
 // sample without reading them: rank 0 reads the whole file and sends each rank its slice (the
 // computation is distributed, the memory on rank 0 is the serial one).
 //
-// Memory per rank: its slice of phase (8 bytes per sample, freed before the merge) plus, per
-// estimator, the edges of its accumulator, 2 min(L, W) doubles (W = the largest stencil,
-// 2 m_max for oadev), and during a merge the partner's edges and a 2W buffer: at most
-// 8 (L + 1) + 8 * 6 min(2^level L, W) bytes (docs/scale.md).
+// Memory per rank: its slice of phase (8 bytes per sample, held while each estimator is pushed)
+// plus, for the estimator being merged, the edges of its accumulator (2 min(L, W) doubles,
+// W = the largest stencil, 2 m_max for oadev) and at a merge of level l the partner's image, its
+// decoded copy and the cross-term buffer: at most 8 (L + 1) + 64 min(2^l L, W) bytes
+// (docs/scale.md).
 #include <vector>
 
 #include "imunoise/deviation.hpp"
