@@ -13,6 +13,7 @@ packages=(
   clang libclang-rt-14-dev
   python3-dev python3-numpy python3-pytest pybind11-dev
   libhdf5-dev libbz2-dev liblz4-dev libzstd-dev python3-h5py python3-rosbag python3-sensor-msgs
+  libopenmpi-dev openmpi-bin
 )
 
 missing=()

@@ -10,5 +10,6 @@ void setup_simulate(CLI::App& app);
 void setup_fit(CLI::App& app);
 void setup_nav(CLI::App& app);
 void setup_redundant(CLI::App& app);
+void setup_fleet(CLI::App& app);
 
 }  // namespace imunoise::cli

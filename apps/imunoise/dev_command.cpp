@@ -16,6 +16,7 @@
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
 #include "imunoise/total.hpp"
+#include "distributed_record.hpp"
 #include "input_options.hpp"
 #include "output.hpp"
 #include "work_budget.hpp"
@@ -37,6 +38,7 @@ struct DevOptionsCli {
   unsigned threads = 0;
   double time_budget_s = 300.0;
   std::string theobr_ratios = "taylor-howe";
+  bool mpi = false;
 };
 
 struct Curve {
@@ -191,6 +193,38 @@ std::string format_table(const PhaseRecord& record, const std::vector<Curve>& cu
   return out;
 }
 
+std::string render(const DevOptionsCli& options, const PhaseRecord& record,
+                   const std::vector<Curve>& curves) {
+  if (options.format == "json") return format_json(record, curves);
+  if (options.format == "csv") return format_csv(curves);
+  return format_table(record, curves, options.ci_level);
+}
+
+// --mpi: the record is read in slices by the ranks and the mergeable sums are merged in a tree
+// (distributed_record.hpp); rank 0 prints. No confidence intervals: the noise identification
+// needs the whole record in one place.
+void run_dev_mpi(const DevOptionsCli& options, const std::vector<Estimator>& estimators,
+                 const TauGrid& grid) {
+  if (options.bias_correct) throw InputError("--bias-correct does not apply to --mpi's estimators");
+  const DistributedCurves dist = distributed_deviations(options.input, estimators, grid);
+  if (!dist.root) return;
+  std::vector<Curve> curves;
+  for (std::size_t i = 0; i < estimators.size(); ++i) {
+    const Estimator estimator = estimators[i];
+    const bool integrated = reports_angle(estimator);
+    const double to_si =
+        integrated ? integral_unit(dist.record.rate_unit).to_si : dist.record.rate_unit.to_si;
+    auto points = dist.curves[i];
+    for (auto& p : points) p.dev /= to_si;
+    curves.push_back({estimator, std::string(estimator_name(estimator)), std::move(points),
+                      unit_label(dist.record, integrated), {}, {},
+                      "--mpi: sums merged over the ranks; no confidence intervals (the noise "
+                      "identification needs the whole record in one place)",
+                      std::nullopt});
+  }
+  write_output(options.output, render(options, dist.record, curves));
+}
+
 void run_dev(const DevOptionsCli& options) {
   if (options.format != "table" && options.format != "json" && options.format != "csv") {
     throw InputError("unknown --format '" + options.format + "'; use table, json or csv");
@@ -206,6 +240,10 @@ void run_dev(const DevOptionsCli& options) {
   const std::optional<int> forced_alpha =
       options.noise_type.empty() ? std::nullopt : std::optional<int>(parse_noise_type(options.noise_type));
   const TheoBrRatios theobr_ratios = parse_theobr_ratios(options.theobr_ratios);
+  if (options.mpi) {
+    run_dev_mpi(options, estimators, grid);
+    return;
+  }
   const PhaseRecord record = load_phase(options.input);
   const double tau0_s = 1.0 / record.rate_hz;
 
@@ -354,6 +392,10 @@ void setup_dev(CLI::App& app) {
       ->capture_default_str();
   command->add_option("-o,--output", options->output.path, "write to FILE instead of standard output");
   command->add_flag("--force", options->output.force, "replace an existing output file");
+  command->add_flag("--mpi", options->mpi,
+                    "under mpirun: each rank reads its own slice of the file, the sums of adev "
+                    "oadev mdev tdev hdev ohdev are merged in a tree (no confidence intervals; "
+                    "docs/scale.md)");
   command->callback([options] { run_dev(*options); });
 }
 

@@ -16,7 +16,9 @@
 #include "imunoise/fit/report.hpp"
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
+#include "distributed_record.hpp"
 #include "input_options.hpp"
+#include "sensor_analysis.hpp"
 #include "output.hpp"
 #include "spec_exports.hpp"
 
@@ -35,17 +37,13 @@ struct FitOptionsCli {
   int min_dominant_taus = 2;
   bool gls = false;
   std::string format = "json";
+  bool mpi = false;
 };
 
 std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.5g}", v) : "-"; }
 
 bool gyro(const PhaseRecord& record) {
   return record.unit_given && record.rate_unit.quantity == Quantity::angular_rate;
-}
-
-fit::RecordInfo record_info(const PhaseRecord& record) {
-  return {record.source, record.rate_hz, record.n_samples, record.rate_unit, unit_label(record),
-          gyro(record)};
 }
 
 std::string to_table(const PhaseRecord& record, const fit::FitOptions& options,
@@ -135,32 +133,47 @@ void run_fit(FitOptionsCli& options) {
   std::string why;
   if (!fo.IsValid(&why)) throw InputError("fit options: " + why);
 
-  const PhaseRecord record = load_phase(options.input);
-  if (record.segments.size() > 1) {
-    throw InputError(record.source + ": fit needs one contiguous record, but --gaps split / --outliers reject "
-                     "split it into " + std::to_string(record.segments.size()) + " segments; fix: fit the longest "
-                     "gap-free stretch, or use --allow-gaps / --outliers report");
+  PhaseRecord record;
+  std::vector<DevPoint> points;
+  std::size_t n_phase = 0;
+  std::vector<std::string> warnings;
+  if (options.mpi) {
+    // Each rank reads its slice; the oadev sums are merged in a tree (distributed_record.hpp).
+    auto dist = distributed_deviations(options.input, {Estimator::oadev}, parse_tau_grid(options.taus));
+    if (!dist.root) return;
+    record = std::move(dist.record);
+    points = std::move(dist.curves[0]);
+    n_phase = dist.n_phase;
+    bool constant = true;
+    for (const auto& p : points) constant = constant && !(p.n > 0 && p.dev > 0.0);
+    if (constant) {
+      throw InputError(record.source + ": the rate is constant (all-zero or a fixed value): there "
+                       "is no noise to identify; check --column and the file");
+    }
+    warnings.push_back("--mpi: the record checks (quantization, saturation, constant stretches) "
+                       "need the whole record in one place and were not run");
+  } else {
+    record = load_phase(options.input);
+    if (record.segments.size() > 1) {
+      throw InputError(record.source + ": fit needs one contiguous record, but --gaps split / --outliers reject "
+                       "split it into " + std::to_string(record.segments.size()) + " segments; fix: fit the longest "
+                       "gap-free stretch, or use --allow-gaps / --outliers report");
+    }
+    const double tau0_s = 1.0 / record.rate_hz;
+    warnings = fit::record_warnings(record.phase_si, tau0_s);
+    if (fit::is_constant_record(record.phase_si, tau0_s)) {
+      throw InputError(record.source + ": the rate is constant (all-zero or a fixed value): there is "
+                       "no noise to identify; check --column and the file");
+    }
+    const auto factors = estimator_averaging_factors(Estimator::oadev, parse_tau_grid(options.taus),
+                                                     record.rate_hz, record.phase_si.size());
+    points = oadev(record.phase_si, tau0_s, factors);
+    n_phase = record.phase_si.size();
   }
-  const double tau0_s = 1.0 / record.rate_hz;
-  auto warnings = fit::record_warnings(record.phase_si, tau0_s);
-  if (fit::is_constant_record(record.phase_si, tau0_s)) {
-    throw InputError(record.source + ": the rate is constant (all-zero or a fixed value): there is "
-                     "no noise to identify; check --column and the file");
-  }
-  const auto factors = estimator_averaging_factors(Estimator::oadev, parse_tau_grid(options.taus),
-                                                   record.rate_hz, record.phase_si.size());
-  const auto points = oadev(record.phase_si, tau0_s, factors);
-  fit::FitResult result = fit::fit_allan(points, record.phase_si.size(), tau0_s, fo);
-  result.summary.warnings.insert(result.summary.warnings.begin(), warnings.begin(), warnings.end());
-  if (result.summary.termination == fit::Termination::degenerate_input ||
-      result.summary.termination == fit::Termination::too_few_points) {
-    throw InputError(record.source + ": cannot fit a noise model: " + result.summary.message);
-  }
-  result.coefficients.quantity = record.rate_unit.quantity == Quantity::acceleration
-                                     ? Quantity::acceleration
-                                     : Quantity::angular_rate;
+  FitOutcome outcome = fit_curve(record, n_phase, points, warnings, fo);
+  const fit::FitResult& result = outcome.result;
 
-  nlohmann::json json = fit::report_json(record_info(record), fo, result);
+  nlohmann::json json = std::move(outcome.json);
   options.spec.force = options.output.force;
   json["spec_comparison"] = run_spec_exports(options.spec, result.coefficients, record.rate_hz);
   // Where the record came from and what preprocessing removed (issue 16).
@@ -218,6 +231,9 @@ void setup_fit(CLI::App& app) {
   command->add_option("-o,--output", options->output.path, "write to FILE instead of standard output");
   command->add_flag("--force", options->output.force, "replace existing output files");
   add_spec_export_options(*command, options->spec);
+  command->add_flag("--mpi", options->mpi,
+                    "under mpirun: each rank reads its own slice of the file and the oadev sums "
+                    "are merged in a tree before the fit (docs/scale.md)");
   command->callback([options] { run_fit(*options); });
 }
 

@@ -605,6 +605,29 @@ PhaseRecord load_phase(const InputOptions& options) {
   return record;
 }
 
+RecordPlan plan_record(const InputOptions& options) {
+  RecordPlan plan;
+  PhaseRecord& record = plan.meta;
+  record.source = source_name(options.file);
+  if (options.file != "-" && !std::filesystem::exists(options.file)) {
+    throw InputError(options.file + ": no such file; check the path");
+  }
+  record.kind = parse_input_kind(options.input);
+  record.rate_hz = options.rate_hz;
+  const Unit unit = unit_of(options, record.kind, record.unit_given);
+  record.rate_unit = record.kind == InputKind::rate || !record.unit_given ? unit : derivative_unit(unit);
+  plan.to_si = unit.to_si * value_scale(options);
+  plan.binary = is_binary(options);
+  if (plan.binary) {
+    if (!options.time_column.empty()) {
+      throw InputError("--time-column is for text input; binary input needs --rate");
+    }
+    require_rate(record.rate_hz, record.source);
+    plan.read = binary_options(options);
+  }
+  return plan;
+}
+
 std::string unit_label(const PhaseRecord& record, bool integrated) {
   if (!record.unit_given) {
     const bool angle = record.kind == InputKind::angle;

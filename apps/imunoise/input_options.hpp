@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "imunoise/io/binary_reader.hpp"
 #include "imunoise/io/recording.hpp"
 #include "imunoise/io/timestamps.hpp"
 #include "imunoise/preprocess/dynamic_allan.hpp"
@@ -72,6 +73,17 @@ struct PhaseRecord {
 /// into the phase array, so peak memory is one double per sample plus a 1 MB buffer.
 /// Throws InputError with the file, line or sample and the fix.
 PhaseRecord load_phase(const InputOptions& options);
+
+/// What load_phase would read, without reading the samples: the record's description (source,
+/// kind, rate, units; phase_si empty, n_samples 0) and, for a raw binary file, its read options
+/// and the factor to SI. For the sliced reads of `--mpi` (each rank reads its own records).
+struct RecordPlan {
+  PhaseRecord meta;
+  bool binary = false;
+  io::BinaryReadOptions read;   ///< binary only
+  double to_si = 1.0;           ///< value in SI = raw value * to_si
+};
+RecordPlan plan_record(const InputOptions& options);
 
 /// Label for a unit in output: its name, or "input unit" (with suffix) when none was given.
 std::string unit_label(const PhaseRecord& record, bool integrated = false);

@@ -235,6 +235,23 @@ void BinaryReader::decode(std::size_t records, double* out) const {
   }
 }
 
+void BinaryReader::seek(std::size_t record) {
+  if (!file_ || !record_count_) {
+    throw InputError(source_ + ": cannot seek in a stream; fix: give a file path");
+  }
+  if (record > *record_count_) {
+    throw InputError(source_ + ": record " + std::to_string(record) + " is past the end (" +
+                     std::to_string(*record_count_) + " records)");
+  }
+  const auto offset = static_cast<off_t>(record * record_bytes());
+  if (::fseeko(file_.get(), offset, SEEK_SET) != 0) {
+    throw InputError(source_ + ": cannot seek to record " + std::to_string(record) + " (" +
+                     std::strerror(errno) + "); fix: give a regular file");
+  }
+  next_record_ = record;
+  at_end_ = record == *record_count_;
+}
+
 std::size_t BinaryReader::read(std::span<double> out) {
   if (out.empty() || at_end_) return 0;
   const std::size_t stride = record_bytes();

@@ -1,7 +1,9 @@
-// Streaming and merging: pieces give the one-pass result (to rounding), merge is associative,
-// the empty accumulator is the identity.
+// Streaming and merging, for the whole mergeable family (adev oadev mdev tdev hdev ohdev): pieces
+// give the one-pass result (to rounding), merge is associative, the empty accumulator is the
+// identity, the result does not depend on the absolute level of each piece, images round-trip.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <random>
 
 #include "imunoise/deviation.hpp"
@@ -60,7 +62,7 @@ TEST_P(Accumulate, MergingSeparatelyIntegratedChunksEqualsOnePass) {
     std::vector<DifferenceAccumulator> parts;
     for (std::size_t begin = 0; begin < rate.size(); begin += chunk) {
       const auto piece = std::span(rate).subspan(begin, std::min(chunk, rate.size() - begin));
-      parts.emplace_back(GetParam(), kFactors);
+      parts.emplace_back(GetParam(), kFactors, begin);  // adev/hdev: global start index
       parts.back().push(phase_from_rate(piece, kTau0, 5.5));
     }
     DifferenceAccumulator sequential(GetParam(), kFactors);
@@ -102,13 +104,89 @@ TEST_P(Accumulate, EmptyAccumulatorIsIdentity) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Core, Accumulate, ::testing::Values(Estimator::oadev, Estimator::ohdev),
+// Pieces whose phase sits at wildly different levels (each piece + its own 2^30 multiple):
+// the edges are kept relative to their boundary sample, so the merge never subtracts the
+// levels. The phase is dyadic (multiples of 2^-20 below 2^10), so every level-shifted value is
+// exact and the merged sums must be bitwise those of the unshifted pieces.
+TEST_P(Accumulate, HugeLevelsOfThePiecesCancelExactly) {
+  std::mt19937_64 engine(17);
+  std::vector<double> phase(20000);
+  double x = 0.0;
+  for (auto& v : phase) {
+    x += static_cast<double>(static_cast<std::int64_t>(engine() % 2001) - 1000) * 0x1.0p-20;
+    v = x;
+  }
+  const auto want = compute_deviation(GetParam(), phase, kTau0, kFactors);
+  DifferenceAccumulator plain(GetParam(), kFactors), lifted(GetParam(), kFactors);
+  const std::size_t cut[] = {0, 4000, 9000, 9500, 19999};
+  for (std::size_t i = 0; i + 1 < std::size(cut); ++i) {
+    const auto piece = std::span(phase).subspan(cut[i], cut[i + 1] - cut[i] + 1);
+    DifferenceAccumulator a(GetParam(), kFactors, cut[i]), b(GetParam(), kFactors, cut[i]);
+    a.push(piece);
+    std::vector<double> high(piece.begin(), piece.end());
+    const double level = static_cast<double>((i % 2 == 0 ? 1 : -1) * static_cast<long long>(i + 1)) * 0x1.0p30;
+    for (auto& v : high) v += level;
+    b.push(high);
+    plain.merge(a);
+    lifted.merge(b);
+  }
+  const auto got_plain = plain.deviations(kTau0);
+  const auto got_lifted = lifted.deviations(kTau0);
+  expect_same(got_plain, want);
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    EXPECT_EQ(got_lifted[i].dev, got_plain[i].dev) << "m=" << want[i].m;
+  }
+}
+
+// Pushing after a merge continues in the merged accumulator's coordinates.
+TEST_P(Accumulate, PushAfterMergeContinues) {
+  const auto phase = phase_from_rate(rate_samples(12000), kTau0, 5.5);
+  const auto want = compute_deviation(GetParam(), phase, kTau0, kFactors);
+  DifferenceAccumulator a(GetParam(), kFactors), b(GetParam(), kFactors, 3000);
+  a.push(std::span(phase).first(3001));
+  std::vector<double> shifted(phase.begin() + 3000, phase.begin() + 9001);
+  for (auto& v : shifted) v -= 123.25;  // b's own coordinates
+  b.push(shifted);
+  a.merge(b);
+  a.push(std::span(phase).subspan(9001));
+  expect_same(a.deviations(kTau0), want);
+}
+
+TEST_P(Accumulate, ByteImageRoundTrips) {
+  const auto phase = phase_from_rate(rate_samples(9000), kTau0, 5.5);
+  DifferenceAccumulator a(GetParam(), kFactors, 0), b(GetParam(), kFactors, 4000);
+  a.push(std::span(phase).first(4001));
+  b.push(std::span(phase).subspan(4000));
+  auto a2 = DifferenceAccumulator::from_bytes(a.to_bytes());
+  const auto b2 = DifferenceAccumulator::from_bytes(b.to_bytes());
+  a.merge(b);
+  a2.merge(b2);
+  const auto want = a.deviations(kTau0), got = a2.deviations(kTau0);
+  for (std::size_t i = 0; i < want.size(); ++i) {
+    EXPECT_EQ(got[i].n, want[i].n);
+    if (want[i].n > 0) {
+      EXPECT_EQ(got[i].dev, want[i].dev);
+    }
+  }
+  auto bytes = a.to_bytes();
+  bytes.pop_back();
+  EXPECT_THROW(DifferenceAccumulator::from_bytes(bytes), InputError);
+}
+
+INSTANTIATE_TEST_SUITE_P(Core, Accumulate,
+                         ::testing::Values(Estimator::adev, Estimator::oadev, Estimator::mdev,
+                                           Estimator::tdev, Estimator::hdev, Estimator::ohdev),
                          [](const auto& param_info) { return std::string(estimator_name(param_info.param)); });
 
 TEST(Accumulate, RejectsOtherEstimatorsAndMismatchedMerges) {
-  EXPECT_THROW(DifferenceAccumulator(Estimator::mdev, {1}), InputError);
+  EXPECT_THROW(DifferenceAccumulator(Estimator::totdev, {1}), InputError);
   DifferenceAccumulator a(Estimator::oadev, {1, 2}), b(Estimator::oadev, {1, 4});
   EXPECT_THROW(a.merge(b), InputError);
+  // adev/hdev pieces must be adjacent: the term alignment (k = 0, m, 2m) depends on it.
+  DifferenceAccumulator c(Estimator::adev, {1, 2}, 0), d(Estimator::adev, {1, 2}, 7);
+  c.push(std::vector<double>(5, 1.0));
+  d.push(std::vector<double>(5, 1.0));
+  EXPECT_THROW(c.merge(d), InputError);
 }
 
 }  // namespace

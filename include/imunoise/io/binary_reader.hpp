@@ -71,6 +71,11 @@ class BinaryReader {
   /// Throws InputError for NaN or Inf (naming the record), truncation and empty input.
   std::size_t read(std::span<double> out);
 
+  /// Files only: the next read() starts at record `record` (<= record_count()), so that each
+  /// process of a parallel run reads its own slice with positioned reads. InputError for a
+  /// stream or a record past the end.
+  void seek(std::size_t record);
+
   /// Number of records in a file; nullopt for a stream.
   [[nodiscard]] std::optional<std::size_t> record_count() const { return record_count_; }
   /// Records delivered so far (the index of the next one).

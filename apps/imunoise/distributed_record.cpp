@@ -1,0 +1,186 @@
+#include "distributed_record.hpp"
+
+#include <cmath>
+#include <cstring>
+#include <optional>
+#include <string>
+
+#include "imunoise/difference_accumulator.hpp"
+#include "imunoise/error.hpp"
+#include "imunoise/io/binary_reader.hpp"
+#include "imunoise/phase.hpp"
+#include "imunoise/theo.hpp"
+#include "mpi_session.hpp"
+
+namespace imunoise::cli {
+namespace {
+
+// The serial reader's offset: the mean of the first 2^20 samples (input_options.cpp).
+constexpr std::size_t kOffsetSamples = std::size_t{1} << 20;
+constexpr int kSliceTag = 21;
+
+// Every rank passes here together: when any rank failed, all leave (the failed ones with
+// their own message, the others saying why they stop) instead of waiting for each other.
+void check_together(const std::optional<std::string>& error, int rank) {
+  if (mpi::all_ok(!error.has_value())) return;
+  if (error) throw InputError(*error);
+  throw InputError("rank " + std::to_string(rank) + " stopped: another rank failed (its message is above)");
+}
+
+struct Slice {
+  std::size_t first_phase = 0;   ///< global index of the slice's first phase sample
+  std::vector<double> phase_si;  ///< in the slice's own coordinates
+};
+
+std::size_t cut(std::size_t n, int rank, int size) {
+  return static_cast<std::size_t>((static_cast<unsigned __int128>(n) * static_cast<unsigned>(rank)) /
+                                  static_cast<unsigned>(size));
+}
+
+Slice read_binary_slice(const RecordPlan& plan, const std::string& path, mpi::World world,
+                        std::size_t& n_phase) {
+  std::optional<std::string> error;
+  std::optional<io::BinaryReader> reader;
+  double offset = 0.0;
+  std::size_t n_records = 0;
+  try {
+    reader.emplace(path, plan.read);
+    n_records = *reader->record_count();
+    if (world.rank == 0 && plan.meta.kind == InputKind::rate) {
+      std::vector<double> first(std::min(kOffsetSamples, n_records));
+      reader->read(first);
+      for (auto& v : first) v *= plan.to_si;
+      offset = compensated_mean(first);
+    }
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  check_together(error, world.rank);
+  offset = mpi::broadcast(offset);
+  const bool rate = plan.meta.kind == InputKind::rate;
+  n_phase = rate ? n_records + 1 : n_records;
+  Slice slice;
+  try {
+    // Rate: records [a, b) integrate into phase [a, b]. Angle: phase [a, b] read directly.
+    const std::size_t span = rate ? n_records : n_records - 1;
+    const std::size_t a = cut(span, world.rank, world.size);
+    const std::size_t b = cut(span, world.rank + 1, world.size);
+    slice.first_phase = a;
+    const std::size_t count = rate ? b - a : b - a + 1;
+    std::vector<double> values(count);
+    reader->seek(a);
+    if (reader->read(values) != count) throw InputError(path + ": short read at record " + std::to_string(a));
+    for (auto& v : values) v *= plan.to_si;
+    if (rate) {
+      slice.phase_si.reserve(count + 1);
+      PhaseIntegrator integrator(1.0 / plan.meta.rate_hz, offset);
+      integrator.push(values, slice.phase_si);
+    } else {
+      slice.phase_si = std::move(values);
+    }
+    for (std::size_t i = 0; i < slice.phase_si.size(); ++i) {
+      if (!std::isfinite(slice.phase_si[i])) {
+        throw InputError(plan.meta.source + ": the integral of the samples overflows near sample " +
+                         std::to_string(a + i) + "; check --units, --scale and --sensitivity");
+      }
+    }
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  check_together(error, world.rank);
+  return slice;
+}
+
+// Text: rank 0 reads everything and sends each rank its slice of the phase.
+Slice scatter_text(const InputOptions& input, mpi::World world, PhaseRecord& record,
+                   std::size_t& n_phase) {
+  std::optional<std::string> error;
+  if (world.rank == 0) {
+    try {
+      record = load_phase(input);
+    } catch (const InputError& e) {
+      error = e.what();
+    }
+  }
+  check_together(error, world.rank);
+  n_phase = static_cast<std::size_t>(mpi::broadcast(static_cast<double>(record.phase_si.size())));
+  record.rate_hz = mpi::broadcast(record.rate_hz);
+  Slice slice;
+  const std::size_t span = n_phase - 1;
+  slice.first_phase = cut(span, world.rank, world.size);
+  if (world.rank == 0) {
+    for (int r = 1; r < world.size; ++r) {
+      const std::size_t a = cut(span, r, world.size), b = cut(span, r + 1, world.size);
+      std::vector<std::uint8_t> bytes((b - a + 1) * sizeof(double));
+      std::memcpy(bytes.data(), record.phase_si.data() + a, bytes.size());
+      mpi::send_bytes(r, kSliceTag, bytes);
+    }
+    const std::size_t b = cut(span, 1, world.size);
+    slice.phase_si.assign(record.phase_si.begin(), record.phase_si.begin() + static_cast<std::ptrdiff_t>(b + 1));
+    record.phase_si.clear();
+    record.phase_si.shrink_to_fit();
+  } else {
+    const auto bytes = mpi::receive_bytes(0, kSliceTag);
+    slice.phase_si.resize(bytes.size() / sizeof(double));
+    std::memcpy(slice.phase_si.data(), bytes.data(), bytes.size());
+  }
+  return slice;
+}
+
+}  // namespace
+
+bool is_mergeable(Estimator e) {
+  return e == Estimator::adev || e == Estimator::oadev || e == Estimator::mdev ||
+         e == Estimator::tdev || e == Estimator::hdev || e == Estimator::ohdev;
+}
+
+DistributedCurves distributed_deviations(const InputOptions& input,
+                                         const std::vector<Estimator>& estimators,
+                                         const TauGrid& grid) {
+  for (const Estimator e : estimators) {
+    if (!is_mergeable(e)) {
+      throw InputError("--mpi: " + std::string(estimator_name(e)) +
+                       " cannot be split into slices and merged; --mpi computes adev, oadev, mdev, "
+                       "tdev, hdev and ohdev (drop --mpi for the others)");
+    }
+  }
+  const mpi::World world = mpi::start();
+  DistributedCurves out;
+  out.root = world.rank == 0;
+  std::optional<std::string> error;
+  RecordPlan plan;
+  try {
+    plan = plan_record(input);
+    if (input.file == "-") {
+      throw InputError("--mpi reads the file on every rank: give a file path, not standard input");
+    }
+  } catch (const InputError& e) {
+    error = e.what();
+  }
+  check_together(error, world.rank);
+  out.record = plan.meta;
+  const Slice slice = plan.binary ? read_binary_slice(plan, input.file, world, out.n_phase)
+                                  : scatter_text(input, world, out.record, out.n_phase);
+  if (plan.binary) out.record.n_samples = plan.meta.kind == InputKind::rate ? out.n_phase - 1 : out.n_phase;
+  out.record.phase_si.clear();
+  const double tau0_s = 1.0 / out.record.rate_hz;
+
+  for (const Estimator estimator : estimators) {
+    if (max_averaging_factor(estimator, out.n_phase) == 0) {
+      throw InputError(out.record.source + ": " + std::to_string(out.record.n_samples) +
+                       " samples are too few for " + std::string(estimator_name(estimator)));
+    }
+    const auto factors =
+        estimator_averaging_factors(estimator, grid, out.record.rate_hz, out.n_phase);
+    DifferenceAccumulator acc(estimator, factors, slice.first_phase);
+    acc.push(slice.phase_si);
+    mpi::tree_merge([&acc] { return acc.to_bytes(); },
+                    [&acc](const std::vector<std::uint8_t>& theirs) {
+                      acc.merge(DifferenceAccumulator::from_bytes(theirs));
+                    });
+    if (out.root) out.curves.push_back(acc.deviations(tau0_s));
+  }
+  return out;
+}
+
+}  // namespace imunoise::cli

@@ -1,0 +1,293 @@
+// imunoise fleet: many sensors, one file each: every record analysed (sensor_analysis.hpp), then
+// the fleet document, distributions, pass rate and outliers (imunoise/fleet/fleet.hpp) written
+// to DIR/fleet.json and DIR/fleet.csv.
+//
+// Under `mpirun -np P` (P > 1) rank 0 hands out the files one at a time to ranks 1..P-1 as they
+// become free (records of different lengths take different times) and puts each result in its
+// file's place, so the outputs are byte for byte the serial run's. A file that fails is
+// reported with its name and the run goes on (--keep-going, the default); --strict stops at the
+// first failure. A rank that dies ends the whole run (mpirun aborts the job and names the rank).
+#include <csignal>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <fmt/core.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "imunoise/error.hpp"
+#include "imunoise/fit/report.hpp"
+#include "imunoise/fleet/fleet.hpp"
+#include "imunoise/spec/spec.hpp"
+#include "input_options.hpp"
+#include "mpi_session.hpp"
+#include "output.hpp"
+#include "sensor_analysis.hpp"
+
+namespace imunoise::cli {
+namespace {
+
+struct FleetOptionsCli {
+  std::vector<std::string> files;
+  InputOptions input;  ///< shared by every file (file is set per file)
+  std::string dir;
+  bool force = false;
+  bool strict = false;
+  bool keep_going = false;  ///< the default; accepted for scripts that say it
+  std::string method = "wls";
+  std::string terms = "Q,N,B,K";
+  std::string taus = "octave";
+  double level = 0.95;
+  std::string spec;
+  double outlier_z = 3.5;
+};
+
+constexpr int kTaskTag = 31;
+constexpr int kResultTag = 32;
+
+SensorAnalysisOptions analysis_options(const FleetOptionsCli& options) {
+  SensorAnalysisOptions a;
+  a.fit.method = fit::parse_method(options.method);
+  a.fit.level = options.level;
+  fit::parse_terms(options.terms, a.fit);
+  std::string why;
+  if (!a.fit.IsValid(&why)) throw InputError("fit options: " + why);
+  a.taus = options.taus;
+  a.spec = options.spec;
+  return a;
+}
+
+// The per-file step: the fit document as it would be parsed back from its JSON text, so that a
+// result that travelled between ranks (as text) and one computed here are the same values.
+fleet::SensorOutcome analyze_file(const FleetOptionsCli& options, const SensorAnalysisOptions& analysis,
+                                  std::size_t index) {
+  fleet::SensorOutcome outcome;
+  outcome.file = options.files[index];
+  InputOptions input = options.input;
+  input.file = outcome.file;
+  try {
+    outcome.fit = nlohmann::json::parse(analyze_sensor(input, analysis).dump());
+  } catch (const InputError& e) {
+    outcome.error = e.what();
+  } catch (const std::bad_alloc&) {
+    outcome.error = "out of memory";
+  } catch (const std::exception& e) {
+    outcome.error = std::string("internal error: ") + e.what();
+  }
+  if (!outcome.error.empty()) {
+    outcome.fit = nullptr;
+    if (outcome.error.rfind(outcome.file, 0) != 0) outcome.error = outcome.file + ": " + outcome.error;
+  }
+  return outcome;
+}
+
+std::vector<std::uint8_t> encode(std::size_t index, const fleet::SensorOutcome& outcome) {
+  const std::string text = outcome.fit.is_null() ? "E" + outcome.error : "J" + outcome.fit.dump();
+  std::vector<std::uint8_t> bytes(8 + text.size());
+  const auto i = static_cast<std::uint64_t>(index);
+  std::memcpy(bytes.data(), &i, 8);
+  std::memcpy(bytes.data() + 8, text.data(), text.size());
+  return bytes;
+}
+
+std::size_t decode(const std::vector<std::uint8_t>& bytes, const FleetOptionsCli& options,
+                   fleet::SensorOutcome& outcome) {
+  std::uint64_t index = 0;
+  std::memcpy(&index, bytes.data(), 8);
+  const std::string text(bytes.begin() + 8, bytes.end());
+  outcome.file = options.files.at(index);
+  if (text.front() == 'J') {
+    outcome.fit = nlohmann::json::parse(text.substr(1));
+  } else {
+    outcome.fit = nullptr;
+    outcome.error = text.substr(1);
+  }
+  return index;
+}
+
+void report_failure(const fleet::SensorOutcome& outcome, bool strict) {
+  if (!strict) {
+    fmt::print(stderr, "imunoise: warning: {} (the fleet run goes on; --strict stops at the first "
+                       "failed file)\n", outcome.error);
+  }
+}
+
+[[noreturn]] void fail_strict(const fleet::SensorOutcome& outcome) {
+  throw InputError(outcome.error + " (--strict: the fleet run stops at the first failed file; "
+                   "without it the file is reported and the run goes on)");
+}
+
+// Test hook (tests/fleet): a worker rank given a file whose name ends with this text kills
+// itself, standing in for a node that dies mid-run.
+bool must_die(const std::string& file) {
+  const char* suffix = std::getenv("IMUNOISE_TEST_RANK_DIES_ON");
+  if (suffix == nullptr || *suffix == '\0') return false;
+  const std::string s(suffix);
+  return file.size() >= s.size() && file.compare(file.size() - s.size(), s.size(), s) == 0;
+}
+
+void worker(const FleetOptionsCli& options, const SensorAnalysisOptions& analysis) {
+  for (;;) {
+    const auto task = mpi::receive_bytes(0, kTaskTag);
+    if (task.empty()) return;
+    std::uint64_t index = 0;
+    std::memcpy(&index, task.data(), 8);
+    if (must_die(options.files.at(index))) std::raise(SIGKILL);
+    mpi::send_bytes(0, kResultTag, encode(index, analyze_file(options, analysis, index)));
+  }
+}
+
+void send_task(int rank, std::size_t index) {
+  std::vector<std::uint8_t> bytes(8);
+  const auto i = static_cast<std::uint64_t>(index);
+  std::memcpy(bytes.data(), &i, 8);
+  mpi::send_bytes(rank, kTaskTag, bytes);
+}
+
+// Rank 0 of a parallel run: dynamic hand-out, results in the files' order.
+std::vector<fleet::SensorOutcome> dispatch(const FleetOptionsCli& options, int ranks) {
+  std::vector<fleet::SensorOutcome> results(options.files.size());
+  std::size_t next = 0;
+  int busy = 0;
+  for (int r = 1; r < ranks; ++r) {
+    if (next < options.files.size()) {
+      send_task(r, next++);
+      ++busy;
+    } else {
+      mpi::send_bytes(r, kTaskTag, {});
+    }
+  }
+  const fleet::SensorOutcome* first_failure = nullptr;
+  while (busy > 0) {
+    int from = 0;
+    const auto bytes = mpi::receive_bytes(-1 /* any */, kResultTag, &from);
+    --busy;
+    fleet::SensorOutcome outcome;
+    const std::size_t index = decode(bytes, options, outcome);
+    results[index] = std::move(outcome);
+    if (results[index].fit.is_null()) {
+      report_failure(results[index], options.strict);
+      if (options.strict && first_failure == nullptr) first_failure = &results[index];
+    }
+    if (next < options.files.size() && first_failure == nullptr) {
+      send_task(from, next++);
+      ++busy;
+    } else {
+      mpi::send_bytes(from, kTaskTag, {});
+    }
+  }
+  if (first_failure != nullptr) fail_strict(*first_failure);
+  return results;
+}
+
+void run_fleet(const FleetOptionsCli& options) {
+  const mpi::World world = mpi::start();
+  const SensorAnalysisOptions analysis = analysis_options(options);
+  if (!(options.outlier_z > 0.0)) throw InputError("--outlier-z must be positive");
+  if (!options.spec.empty()) resolve_spec(options.spec);  // a bad --spec fails once, not per file
+  const std::filesystem::path dir(options.dir);
+  const auto json_path = (dir / "fleet.json").string();
+  const auto csv_path = (dir / "fleet.csv").string();
+  // Rank 0 checks the outputs before any work; every rank learns the verdict together.
+  std::string error;
+  if (world.rank == 0) {
+    std::error_code ec;
+    if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec)) {
+      error = options.dir + ": exists and is not a directory; fix: give -o a directory";
+    } else {
+      for (const auto& path : {json_path, csv_path}) {
+        if (error.empty() && std::filesystem::exists(path, ec) && !options.force) {
+          error = path + ": file exists; imunoise does not overwrite it — choose another -o "
+                         "directory or pass --force";
+        }
+      }
+      if (error.empty()) {
+        std::filesystem::create_directories(dir, ec);
+        if (ec) error = options.dir + ": cannot create the directory (" + ec.message() + ")";
+      }
+    }
+  }
+  if (!mpi::all_ok(error.empty())) {
+    if (world.rank == 0) throw InputError(error);
+    return;
+  }
+  if (world.rank != 0) {
+    worker(options, analysis);
+    return;
+  }
+  std::vector<fleet::SensorOutcome> results;
+  if (world.size == 1) {
+    for (std::size_t i = 0; i < options.files.size(); ++i) {
+      results.push_back(analyze_file(options, analysis, i));
+      if (results.back().fit.is_null()) {
+        if (options.strict) fail_strict(results.back());
+        report_failure(results.back(), false);
+      }
+    }
+  } else {
+    results = dispatch(options, world.size);
+  }
+  fleet::FleetRules rules;
+  rules.outlier_z = options.outlier_z;
+  const nlohmann::json doc = fleet::fleet_document(results, rules);
+  write_output({json_path, options.force}, doc.dump(1) + "\n");
+  write_output({csv_path, options.force}, fleet::fleet_csv(doc));
+  const auto& summary = doc["summary"];
+  std::string pass = "no datasheet (--spec)";
+  if (!summary["datasheet"].is_null()) {
+    pass = fmt::format("{} of {} pass {} ({:.0f} %)", summary["datasheet"]["n_pass"].get<std::size_t>(),
+                       summary["datasheet"]["n_judged"].get<std::size_t>(),
+                       summary["datasheet"]["spec"].get<std::string>(),
+                       100.0 * summary["datasheet"]["pass_rate"].get<double>());
+  }
+  fmt::print("fleet: {} files, {} analysed, {} failed; {}; {} outliers; wrote {} and {}\n",
+             summary["n_files"].get<std::size_t>(), summary["n_analysed"].get<std::size_t>(),
+             summary["n_failed"].get<std::size_t>(), pass, summary["outliers"].size(), json_path,
+             csv_path);
+}
+
+}  // namespace
+
+void setup_fleet(CLI::App& app) {
+  auto options = std::make_shared<FleetOptionsCli>();
+  auto* command = app.add_subcommand(
+      "fleet", "many sensors (one record each): per-sensor fit and datasheet verdict, coefficient "
+               "distributions, pass rate, outliers -> DIR/fleet.json, DIR/fleet.csv; also under "
+               "mpirun -np P");
+  command->add_option("files", options->files, "records, one per sensor")->required();
+  command->add_option("-o,--output", options->dir, "output directory")->required();
+  command->add_flag("--force", options->force, "replace existing fleet.json / fleet.csv");
+  command->add_flag("--strict", options->strict, "stop at the first file that cannot be analysed");
+  command->add_flag("--keep-going", options->keep_going,
+                    "report a file that cannot be analysed and go on (the default)");
+  auto& in = options->input;
+  command->add_option("--rate", in.rate_hz, "sample rate (Hz) of every file (default: each "
+                                             "file's time column or imunoise simulate header)");
+  command->add_option("--input", in.input, "rate (freq) or angle (phase)")->capture_default_str();
+  command->add_option("--units", in.units, "unit of the values, e.g. deg/s");
+  command->add_option("--column", in.column, "column: 0-based index or header name; binary: channel");
+  command->add_option("--time-column", in.time_column, "column of timestamps (s or integer ns)");
+  command->add_flag("--allow-gaps", in.allow_gaps, "treat timestamp gaps as equally spaced");
+  command->add_option("--binary", in.binary, "raw binary samples: f32|f64|i16|i32[:le|be]");
+  command->add_option("--channels", in.channels, "interleaved channels in binary input")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{65536}));
+  command->add_option("--scale", in.scale, "multiply raw values by this factor");
+  command->add_option("--sensitivity", in.sensitivity, "divide raw values by this sensitivity");
+  command->add_option("--method", options->method, "fit method: wls, ols, slope")->capture_default_str();
+  command->add_option("--terms", options->terms, "terms to fit (Q,N,B,K,R)")->capture_default_str();
+  command->add_option("--taus", options->taus, "tau grid of the Allan curves")->capture_default_str();
+  command->add_option("--level", options->level, "confidence level of the intervals")
+      ->capture_default_str()
+      ->check(CLI::Range(0.5, 0.999));
+  command->add_option("--spec", options->spec, "datasheet: built-in name (tg100) or YAML file");
+  command->add_option("--outlier-z", options->outlier_z,
+                      "robust z-score on log10 of a coefficient above which a sensor is an outlier")
+      ->capture_default_str();
+  command->callback([options] { run_fleet(*options); });
+}
+
+}  // namespace imunoise::cli
