@@ -101,6 +101,27 @@ struct FitOptions {
   /// wls: a term must dominate the fitted model at this many taus or more to stay in the fit
   /// (data sufficiency); otherwise it is reported as not identified and the rest refitted.
   int min_dominant_taus = 2;  ///< wls: which terms are present (see Selection)
+  /// Taus fitted: [tau_min_s, tau_max_s] (0: no limit). Taus outside are reported in
+  /// FitSummary::excluded_taus and in the residuals with used = false.
+  double tau_min_s = 0.0;
+  double tau_max_s = 0.0;
+  /// wls, ols: leave out the shortest taus that a sensor's sampling chain (anti-alias filter,
+  /// decimation, an axis updated at a fraction of the output rate) has bent away from any sum
+  /// of power laws. eq. 5 is a sum of power laws of tau, so log sigma^2 is a convex function of
+  /// log tau: a concave bend (the log-log slope falling by more than 3 standard deviations of
+  /// its sampling noise) at an averaging factor m <= distortion_max_m cannot come from the
+  /// noise model; every tau below the last such bend is excluded, with a note.
+  bool exclude_distorted = true;
+  std::size_t distortion_max_m = 16;
+  /// wls, ols: model mismatch. When the chi^2 of the fit (full model covariance) exceeds its
+  /// (1 - mismatch_test_alpha) quantile, the power-law model does not describe the curve to
+  /// within its sampling noise (a real sensor: temperature, a sinusoid, a non-1/f floor). A
+  /// relative scatter s of the curve about the model is then estimated (Paule-Mandel: chi^2 =
+  /// dof with the covariance Sigma + s^2 diag(model^2)) and used in the weights and in every
+  /// interval, so that no tau is trusted beyond the model's own accuracy and the intervals are
+  /// widened by the mismatch. false: exact-model weights (the behaviour before issue 15).
+  bool model_mismatch = true;
+  double mismatch_test_alpha = 0.01;
   /// Checks every field; writes why not into *error (may be null).
   bool IsValid(std::string* error) const;
 };
@@ -122,6 +143,13 @@ struct TauResidual {
   double sd_model = 0.0;    ///< standard deviation of the estimate under the model (SI)
   double normalized = 0.0;  ///< (avar - avar_model) / sd_model
   int dominant_term = -1;   ///< term contributing most to avar_model (kQ..kSIN; -1: none)
+  bool used = true;         ///< false: left out of the fit (FitSummary::excluded_taus says why)
+};
+
+/// A tau of the curve that the fit left out, and why.
+struct ExcludedTau {
+  double tau_s = 0.0;
+  std::string reason;  ///< "sampling_chain" or "tau_range"
 };
 
 /// Per-term detail behind the coefficient.
@@ -141,6 +169,12 @@ struct FitSummary {
   double chi2 = 0.0;          ///< r' Sigma^-1 r with the model covariance (correlations included)
   std::size_t dof = 0;        ///< points_used - free parameters
   double chi2_dof = 0.0;      ///< chi2 / dof (0 when dof = 0)
+  /// Relative scatter of the curve about the model estimated from the misfit (model_mismatch;
+  /// 0 when the chi^2 test accepts the model) and chi^2/dof with it in the covariance (~1).
+  double mismatch_scatter = 0.0;
+  double chi2_dof_with_mismatch = 0.0;
+  /// Taus left out of the fit (sampling-chain distortion, --tau-min/--tau-max).
+  std::vector<ExcludedTau> excluded_taus;
   std::vector<std::string> warnings;
   std::string message;        ///< one sentence on the termination
   std::string BriefReport() const;
