@@ -30,13 +30,14 @@ std::vector<std::size_t> octave(std::size_t n) {
 
 TEST(KasdinWalter, FlickerFloorIsTheEq5Floor) {
   // Innovations of standard deviation B give the Allan floor (2 ln 2 / pi) B^2 (header): the
-  // mean over 8 records of 2^20 samples at tau = 2^4..2^14 samples, each within 4 standard
-  // errors of the record-to-record scatter.
-  const std::size_t n = std::size_t{1} << 20;
+  // mean over 8 records of 2^18 samples at tau = 2^4..2^12 samples, each within 4 standard
+  // errors of the record-to-record scatter plus 1 % (the discrete filter's Allan variance
+  // exceeds the continuous floor by 0.46 % at m = 16 and less beyond: 1/f reaches Nyquist).
+  const std::size_t n = std::size_t{1} << 18;
   const KasdinWalterFlicker gen(n);
   std::mt19937_64 rng(7);
   const double tau0 = 1.0;
-  const std::vector<std::size_t> m = {16, 64, 256, 1024, 4096, 16384};
+  const std::vector<std::size_t> m = {16, 64, 256, 1024, 4096};
   std::vector<std::vector<double>> avar(m.size());
   for (int rec = 0; rec < 4; ++rec) {
     auto [a, b] = gen.pair(rng, 1.0);
@@ -73,7 +74,9 @@ int runs_from_env(const char* name, int fallback) {
 // Gyro 1 of the paper by the independent generator, 6 h at 200 Hz.
 Coverage kasdin_walter_study(int runs, const fit::FitOptions& options) {
   const double tau0 = 1.0 / kRateHz;
-  const auto n = static_cast<std::size_t>(6.0 * 3600.0 * kRateHz);
+  const char* hours_env = std::getenv("IMUNOISE_KW_HOURS");
+  const double hours = hours_env != nullptr ? std::atof(hours_env) : 6.0;
+  const auto n = static_cast<std::size_t>(hours * 3600.0 * kRateHz);
   const KasdinWalterFlicker gen(n);
   const auto factors = octave(n + 1);
   const double truth[fit::kTermCount] = {0.0, kN, kB, kK, 0.0};
@@ -98,15 +101,20 @@ Coverage kasdin_walter_study(int runs, const fit::FitOptions& options) {
       }
       ++c.runs;
       if (std::getenv("IMUNOISE_KW_VERBOSE") != nullptr) {
-        std::printf("run %d: N %.6g [%.6g %.6g] B %.4g K %.4g chi2/dof %.3g\n", c.runs,
-                    r.terms[fit::kN].estimate, r.coefficients.random_walk.ci_low,
-                    r.coefficients.random_walk.ci_high, r.terms[fit::kB].estimate,
-                    r.terms[fit::kK].estimate, r.summary.chi2_dof);
+        std::printf("run %d: N %.6g [%.6g %.6g] z %+.2f B %.4g K %.4g chi2/dof %.3g scatter %.3g "
+                    "cut %zu\n",
+                    c.runs, r.terms[fit::kN].estimate, r.coefficients.random_walk.ci_low,
+                    r.coefficients.random_walk.ci_high, c.z[fit::kN].back(),
+                    r.terms[fit::kB].estimate, r.terms[fit::kK].estimate, r.summary.chi2_dof,
+                    r.summary.mismatch_scatter, r.summary.excluded_taus.size());
+        for (const auto& p : r.residuals) {
+          if (p.tau_s < 0.1) std::printf("   tau %g resid/sd %+.2f used %d\n", p.tau_s, p.normalized, p.used);
+        }
       }
     }
   }
-  std::printf("\n%d runs, Kasdin-Walter flicker + white + random walk (gyro 1), 6 h at 200 Hz\n",
-              c.runs);
+  std::printf("\n%d runs, Kasdin-Walter flicker + white + random walk (gyro 1), %g h at 200 Hz\n",
+              c.runs, hours);
   for (int j = fit::kN; j <= fit::kK; ++j) {
     double mean = 0, sq = 0, zsq = 0;
     for (double e : c.est[j]) mean += e;
@@ -123,7 +131,12 @@ Coverage kasdin_walter_study(int runs, const fit::FitOptions& options) {
 
 TEST(SlowKasdinWalter, Tg100Gyro1Coverage) {
   const int runs = runs_from_env("IMUNOISE_KW_RUNS", 30);
-  const auto c = kasdin_walter_study(runs, fit::FitOptions{});
+  fit::FitOptions options;
+  if (const char* v = std::getenv("IMUNOISE_FIT_EXACT"); v != nullptr && std::atoi(v) != 0) {
+    options.model_mismatch = false;
+    options.exclude_distorted = false;
+  }
+  const auto c = kasdin_walter_study(runs, options);
   EXPECT_GT(c.runs, 0);
 }
 

@@ -113,7 +113,8 @@ struct FitOptions {
   /// noise model; every tau below the last such bend is excluded, with a note.
   bool exclude_distorted = true;
   std::size_t distortion_max_m = 16;
-  /// wls, ols: model mismatch. When the chi^2 of the fit (full model covariance) exceeds its
+  /// wls: model mismatch (ols, the paper's unweighted method, is left as it was: its estimate
+  /// does not minimise chi^2, so the test below would reject exact models). When the chi^2 of the fit (full model covariance) exceeds its
   /// (1 - mismatch_test_alpha) quantile, the power-law model does not describe the curve to
   /// within its sampling noise (a real sensor: temperature, a sinusoid, a non-1/f floor). A
   /// relative scatter s of the curve about the model is then estimated (Paule-Mandel: chi^2 =
@@ -121,7 +122,7 @@ struct FitOptions {
   /// interval, so that no tau is trusted beyond the model's own accuracy and the intervals are
   /// widened by the mismatch. false: exact-model weights (the behaviour before issue 15).
   bool model_mismatch = true;
-  double mismatch_test_alpha = 0.01;
+  double mismatch_test_alpha = 1e-3;
   /// Checks every field; writes why not into *error (may be null).
   bool IsValid(std::string* error) const;
 };
