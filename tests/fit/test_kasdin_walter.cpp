@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -57,6 +58,54 @@ TEST(KasdinWalter, FlickerFloorIsTheEq5Floor) {
                                 static_cast<double>(avar[i].size()));
     EXPECT_NEAR(mean, floor, 4.0 * se + 0.01 * floor) << "m = " << m[i];
   }
+}
+
+/// Allan variance of Kasdin-Walter flicker with unit innovations at averaging factor m (rate
+/// samples): (1/2 pi) int_0^pi 2 sin^4(m w/2) / (m^2 sin^3(w/2)) dw (the filter's gain
+/// 1/|2 sin(w/2)| times the Allan transfer function), by Simpson's rule; 4 / pi / 2 = 0.6366
+/// at m = 1, tending to the eq. 5 floor 2 ln 2 / pi = 0.4413.
+double kw_flicker_avar(std::size_t m) {
+  const double md = static_cast<double>(m);
+  const std::size_t steps = 2 * (4000 + 400 * m);
+  const double h = std::numbers::pi / static_cast<double>(steps);
+  auto f = [&](double w) {
+    if (w == 0.0) return 0.0;
+    const double a = std::sin(0.5 * md * w), b = std::sin(0.5 * w);
+    return 2.0 * a * a * a * a / (md * md * b * b * b);
+  };
+  double sum = f(0.0) + f(std::numbers::pi);
+  for (std::size_t i = 1; i < steps; ++i) sum += (i % 2 ? 4.0 : 2.0) * f(static_cast<double>(i) * h);
+  return sum * h / 3.0 / (2.0 * std::numbers::pi);
+}
+
+TEST(KasdinWalter, DiscreteFlickerExceedsTheFloorAtShortTaus) {
+  const double floor = 2.0 * std::numbers::ln2 / std::numbers::pi;
+  EXPECT_NEAR(kw_flicker_avar(1), 2.0 / std::numbers::pi, 1e-9);  // (4/pi)/2: closed form
+  EXPECT_NEAR(kw_flicker_avar(1024) / floor, 1.0, 1e-5);
+}
+
+// The expected (noise-free) curve of the independent generator, fitted: the flicker's excess
+// over the continuous floor at the shortest taus is the only model difference.
+TEST(KasdinWalter, ExpectedCurveBiasOfN) {
+  const double tau0 = 1.0 / kRateHz;
+  const auto n_phase = static_cast<std::size_t>(6.0 * 3600.0 * kRateHz) + 1;
+  std::vector<DevPoint> pts;
+  for (std::size_t m = 1; 2 * m < n_phase; m *= 2) {
+    DevPoint p;
+    p.m = m;
+    p.tau_s = static_cast<double>(m) * tau0;
+    const double flicker = m <= 4096 ? kw_flicker_avar(m) : 2.0 * std::numbers::ln2 / std::numbers::pi;
+    p.dev = std::sqrt(kN * kN / p.tau_s + kB * kB * flicker + kK * kK * p.tau_s / 3.0);
+    pts.push_back(p);
+  }
+  const auto r = fit::fit_allan(pts, n_phase, tau0, fit::FitOptions{});
+  const auto& c = r.coefficients.random_walk;
+  const double sd = 0.5 * (c.ci_high - c.ci_low) / 1.96;
+  const double bias = r.terms[fit::kN].estimate - kN;
+  std::printf("expected Kasdin-Walter curve, 6 h: N bias %+.4f%% = %+.2f interval sd; B %+.3f%%\n",
+              100 * bias / kN, bias / sd, 100 * (r.terms[fit::kB].estimate / kB - 1));
+  // The bias must be small against the interval, or the coverage cannot hold.
+  EXPECT_LT(std::abs(bias / sd), 0.75);
 }
 
 struct Coverage {
