@@ -1,7 +1,9 @@
 // Coverage of the fit's intervals on records from an independent generator (issue 15): flicker
 // rate noise by the Kasdin-Walter fractional difference (tests/fit/kasdin_walter.hpp, no
 // src/sim code) plus white and random-walk rate noise at the paper's gyro 1 (Table 2), 6 h at
-// 200 Hz. IMUNOISE_KW_RUNS overrides the number of runs (docs/fit.md has the larger study).
+// 200 Hz. The CI test runs 30 records of 1 h (the 6 h study of the issue takes ~20 CPU-minutes
+// for the 2^24-point transforms: IMUNOISE_KW_HOURS=6, numbers in docs/fit.md);
+// IMUNOISE_KW_RUNS overrides the number of runs.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -124,7 +126,7 @@ int runs_from_env(const char* name, int fallback) {
 Coverage kasdin_walter_study(int runs, const fit::FitOptions& options) {
   const double tau0 = 1.0 / kRateHz;
   const char* hours_env = std::getenv("IMUNOISE_KW_HOURS");
-  const double hours = hours_env != nullptr ? std::atof(hours_env) : 6.0;
+  const double hours = hours_env != nullptr ? std::atof(hours_env) : 1.0;
   const auto n = static_cast<std::size_t>(hours * 3600.0 * kRateHz);
   const KasdinWalterFlicker gen(n);
   const auto factors = octave(n + 1);
@@ -184,9 +186,17 @@ TEST(SlowKasdinWalter, Tg100Gyro1Coverage) {
   if (const char* v = std::getenv("IMUNOISE_FIT_EXACT"); v != nullptr && std::atoi(v) != 0) {
     options.model_mismatch = false;
     options.exclude_distorted = false;
+    options.flicker_band_edge = false;
   }
   const auto c = kasdin_walter_study(runs, options);
-  EXPECT_GT(c.runs, 0);
+  ASSERT_EQ(c.runs, runs);
+  // Coverage of the 95 % intervals: with 30 runs at a true 0.95 the count is Binomial(30, 0.95)
+  // (mean 28.5, sd 1.19); at least 24 of 30 must cover: P(count <= 23) = 0.06 % is the false
+  // failure rate over seeds (the seed is fixed). Scaled for other run counts (3.8 sd).
+  const int need = static_cast<int>(std::ceil(runs * 0.95 - 3.8 * std::sqrt(runs * 0.95 * 0.05)));
+  for (int j = fit::kN; j <= fit::kK; ++j) {
+    EXPECT_GE(c.covered[j], need) << fit::term_name(j);
+  }
 }
 
 }  // namespace
