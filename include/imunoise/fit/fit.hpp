@@ -35,6 +35,12 @@
 // coverage on simulated 6 h TG-100 records (tests/fit/test_acceptance.cpp; docs/fit.md:
 // N 94 %, B 92 %, K 98 % over 200 runs).
 //
+// Real sensors (issue 15, docs/fit.md): by default the shortest taus bent by the sensor's
+// sampling chain and interior bumps (concave bends: no sum of power laws has one) are left out,
+// a model-mismatch scatter is estimated when chi^2 rejects the model (weights and intervals
+// include it), and the flicker column's shape at the shortest taus carries the band-edge
+// ambiguity (FitOptions::exclude_distorted, model_mismatch, flicker_band_edge).
+//
 // Identification: a term is identified when zero is outside its interval. Otherwise its value
 // is 0, identified = false, ci_low = 0 and ci_high holds the upper limit, with a note saying
 // why (not significant, clamped at zero, too few taus, negative ols coefficient, not fitted).
@@ -159,7 +165,7 @@ struct TauResidual {
 /// A tau of the curve that the fit left out, and why.
 struct ExcludedTau {
   double tau_s = 0.0;
-  std::string reason;  ///< "sampling_chain" or "tau_range"
+  std::string reason;  ///< "sampling_chain", "bend" (an interior bump) or "tau_range"
 };
 
 /// Per-term detail behind the coefficient.
