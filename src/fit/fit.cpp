@@ -461,7 +461,10 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
       curve = std::move(kept);
     }
   }
-  if (options.exclude_distorted && options.method != Method::slope) {
+  // Not when GM or SIN is requested: those terms are there to model the bump (without this the
+  // sinusoid study found no sinusoid: its bump had been left out).
+  if (options.exclude_distorted && options.method != Method::slope && !options.gauss_markov &&
+      !options.sinusoid) {
     const auto bends = interior_bends(curve, n_phase, options.distortion_max_m);
     std::vector<bool> drop(curve.tau.size(), false);
     for (std::size_t b : bends) {
