@@ -36,6 +36,10 @@ struct FitOptionsCli {
   double level = 0.95;
   int min_dominant_taus = 2;
   bool gls = false;
+  double tau_min_s = 0.0;
+  double tau_max_s = 0.0;
+  bool keep_short_taus = false;
+  bool exact_model = false;
   std::string format = "json";
   bool mpi = false;
 };
@@ -109,11 +113,16 @@ std::string to_table(const PhaseRecord& record, const fit::FitOptions& options,
                      std::sqrt(r.avar_min_measured) / f, unit_label(record), r.tau_min_measured_s);
   out += "# " + r.summary.BriefReport() + "\n";
   for (const auto& w : r.summary.warnings) out += "# warning: " + w + "\n";
+  if (r.summary.mismatch_scatter > 0.0) {
+    out += fmt::format("# model mismatch: {:.3g}% scatter of sigma^2 per tau; chi2/dof with it {:.3g}\n",
+                       100 * r.summary.mismatch_scatter, r.summary.chi2_dof_with_mismatch);
+  }
   out += fmt::format("{:>13} {:>13} {:>13} {:>9} {:>4}\n", "tau [s]", "adev", "model", "resid/sd",
                      "term");
   for (const auto& p : r.residuals) {
-    out += fmt::format("{:>13.6g} {:>13.6g} {:>13.6g} {:>+9.2f} {:>4}\n", p.tau_s,
-                       std::sqrt(p.avar) / f, std::sqrt(p.avar_model) / f, p.normalized,
+    out += fmt::format("{:>13.6g} {:>13.6g} {:>13.6g} {:>9} {:>4}\n", p.tau_s,
+                       std::sqrt(p.avar) / f, std::sqrt(p.avar_model) / f,
+                       p.used ? fmt::format("{:+.2f}", p.normalized) : std::string("excluded"),
                        p.dominant_term >= 0 ? fit::term_name(p.dominant_term) : "-");
   }
   return out;
@@ -129,6 +138,10 @@ void run_fit(FitOptionsCli& options) {
   fo.use_correlation = options.gls;
   fo.min_dominant_taus = options.min_dominant_taus;
   fo.selection = fit::parse_selection(options.selection);
+  fo.tau_min_s = options.tau_min_s;
+  fo.tau_max_s = options.tau_max_s;
+  fo.exclude_distorted = !options.keep_short_taus;
+  fo.model_mismatch = !options.exact_model;
   fit::parse_terms(options.terms, fo);
   std::string why;
   if (!fo.IsValid(&why)) throw InputError("fit options: " + why);
@@ -227,6 +240,17 @@ void setup_fit(CLI::App& app) {
   command->add_flag("--gls", options->gls,
                     "wls: whiten with the full correlation of the overlapping estimates "
                     "(generalised least squares) instead of the diagonal");
+  command->add_option("--tau-min", options->tau_min_s,
+                      "fit only taus >= this (s; 0: from the shortest)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_option("--tau-max", options->tau_max_s, "fit only taus <= this (s; 0: no limit)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_flag("--keep-short-taus", options->keep_short_taus,
+                    "do not leave out the shortest taus bent by the sensor's sampling chain "
+                    "(filter, decimation)");
+  command->add_flag("--exact-model", options->exact_model,
+                    "weights and intervals assume the power-law model is exact (no "
+                    "model-mismatch scatter, even when chi2 rejects the model)");
   command->add_option("--format", options->format, "json or table")->capture_default_str();
   command->add_option("-o,--output", options->output.path, "write to FILE instead of standard output");
   command->add_flag("--force", options->output.force, "replace existing output files");

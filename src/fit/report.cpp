@@ -148,8 +148,11 @@ nlohmann::json report_json(const RecordInfo& record, const FitOptions& options,
                          {"normalized_residual", number(p.normalized)},
                          {"dominant_term", p.dominant_term >= 0
                                                ? nlohmann::json(term_name(p.dominant_term))
-                                               : nlohmann::json(nullptr)}});
+                                               : nlohmann::json(nullptr)},
+                         {"used", p.used}});
   }
+  nlohmann::json excluded = nlohmann::json::array();
+  for (const auto& e : s.excluded_taus) excluded.push_back({{"tau_s", e.tau_s}, {"reason", e.reason}});
   return {
       {"unit", record.unit_label},
       {"method", method_name(options.method)},
@@ -172,6 +175,9 @@ nlohmann::json report_json(const RecordInfo& record, const FitOptions& options,
                        {"chi2", number(s.chi2)},
                        {"dof", s.dof},
                        {"chi2_dof", number(s.chi2_dof)},
+                       {"mismatch_scatter", number(s.mismatch_scatter)},
+                       {"chi2_dof_with_mismatch", number(s.chi2_dof_with_mismatch)},
+                       {"excluded_taus", std::move(excluded)},
                        {"warnings", s.warnings},
                        {"residuals", std::move(residuals)}}}};
 }

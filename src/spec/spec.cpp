@@ -509,12 +509,34 @@ Spec tg100() {
   return spec;
 }
 
+Spec adis16405() {
+  // Analog Devices ADIS16405 (triaxial inertial sensor with magnetometer), datasheet rev. B,
+  // gyroscope specifications at +25 degC: angle random walk 2.0 deg/sqrt(h), in-run bias
+  // stability 0.007 deg/s (1 sigma, from the Allan curve), dynamic range +/-300 deg/s,
+  // bandwidth 330 Hz. The output is digital (0.05 deg/s per LSB at +/-300 deg/s): there is no
+  // analog scale factor.
+  Spec spec;
+  spec.name = "adis16405";
+  spec.description =
+      "ADIS16405 MEMS IMU gyroscopes (Analog Devices), datasheet at +25 degC; digital output, "
+      "0.05 deg/s LSB";
+  spec.source = "builtin:adis16405";
+  spec.sensor = SensorKind::gyroscope;
+  spec.tolerance = 0.0;
+  spec.random_walk = builtin_term('N', 2.0, "deg/sqrt(h)");
+  spec.bias_instability = builtin_term('B', 0.007, "deg/s");
+  spec.range = SpecRating{300.0, "deg/s", 300.0 * units::deg_to_rad};
+  spec.bandwidth = SpecRating{330.0, "Hz", 330.0};
+  return spec;
+}
+
 }  // namespace
 
-std::vector<std::string> builtin_spec_names() { return {"tg100"}; }
+std::vector<std::string> builtin_spec_names() { return {"adis16405", "tg100"}; }
 
 Spec builtin_spec(std::string_view name) {
   if (name == "tg100") return tg100();
+  if (name == "adis16405") return adis16405();
   std::string known;
   for (const auto& n : builtin_spec_names()) known += (known.empty() ? "" : ", ") + n;
   throw InputError("unknown built-in spec '" + std::string(name) + "'; fix: use one of " + known +

@@ -99,6 +99,45 @@ TEST(CliFit, OptionalGaussMarkovAndSinusoidTerms) {
   EXPECT_TRUE(alone.out.empty());
 }
 
+// Issue 15: the fitted tau range, the excluded taus and the mismatch in the JSON, the built-in
+// adis16405 spec, and a reversed range refused.
+TEST(CliFit, TauRangeMismatchAndAdisSpec) {
+  TempDir dir;
+  const std::string file = dir.file("g.f64");
+  const auto sim = run_cli({"simulate", "--rate", "200", "--duration", "1800", "--N", "8.9e-4",
+                            "--B", "5.9e-4", "--units", "deg/s", "--seed", "5", "--format", "f64",
+                            "-o", file});
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const auto r = run_cli({"fit", file, "--binary", "f64", "--rate", "200", "--units", "deg/s",
+                          "--tau-min", "0.02", "--tau-max", "100", "--spec", "adis16405"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& d = j["diagnostics"];
+  ASSERT_TRUE(d["excluded_taus"].is_array());
+  ASSERT_FALSE(d["excluded_taus"].empty());
+  for (const auto& e : d["excluded_taus"]) {
+    EXPECT_EQ(e["reason"], "tau_range");
+    const double t = e["tau_s"].get<double>();
+    EXPECT_TRUE(t < 0.02 || t > 100.0) << t;
+  }
+  for (const auto& p : d["residuals"]) {
+    const double t = p["tau_s"].get<double>();
+    EXPECT_EQ(p["used"].get<bool>(), t >= 0.02 && t <= 100.0) << t;
+  }
+  EXPECT_TRUE(d.contains("mismatch_scatter"));
+  EXPECT_TRUE(d.contains("chi2_dof_with_mismatch"));
+  EXPECT_EQ(j["spec_comparison"]["spec"], "adis16405");
+  const auto t = run_cli({"fit", file, "--binary", "f64", "--rate", "200", "--format", "table",
+                          "--tau-min", "0.02"});
+  EXPECT_EQ(t.exit_code, 0) << t.err;
+  EXPECT_NE(t.out.find("excluded"), std::string::npos);
+
+  const auto bad = run_cli({"fit", file, "--binary", "f64", "--rate", "200", "--tau-min", "10",
+                            "--tau-max", "1"});
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("tau_max"), std::string::npos) << bad.err;
+}
+
 TEST(CliFit, BadInputGivesClearMessages) {
   TempDir dir;
   std::string zeros;

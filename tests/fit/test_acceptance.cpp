@@ -87,6 +87,7 @@ TEST(FitAcceptance, Tg100Gyro1SixHours) {
   const fit::Method methods[3] = {fit::Method::wls, fit::Method::ols, fit::Method::slope};
   Stats stats[3];
   int q_or_r_identified = 0;
+  int with_scatter = 0, with_cut = 0;
   for (int run = 0; run < runs; ++run) {
     const auto phase = tg100_phase(6.0, 1 + static_cast<std::uint64_t>(run));
     std::vector<std::size_t> factors;
@@ -98,9 +99,17 @@ TEST(FitAcceptance, Tg100Gyro1SixHours) {
       if (const char* v = std::getenv("IMUNOISE_FIT_SEL")) options.selection = static_cast<fit::Selection>(std::atoi(v));
       if (const char* v = std::getenv("IMUNOISE_FIT_NOR")) options.terms[fit::kR] = std::atoi(v) == 0;
       if (const char* v = std::getenv("IMUNOISE_FIT_CORR")) options.use_correlation = std::atoi(v) != 0;
+      // IMUNOISE_FIT_EXACT=1: the fit before issue 15 (no mismatch scatter, no short-tau cut).
+      if (const char* v = std::getenv("IMUNOISE_FIT_EXACT"); v != nullptr && std::atoi(v) != 0) {
+        options.model_mismatch = false;
+        options.exclude_distorted = false;
+        options.flicker_band_edge = false;
+      }
       const auto r = fit::fit_allan(curve, phase.size(), 1.0 / kRateHz, options);
       accumulate(stats[k], r, methods[k]);
       if (k == 0) {
+        with_scatter += r.summary.mismatch_scatter > 0.0;
+        with_cut += !r.summary.excluded_taus.empty();
         q_or_r_identified += r.coefficients.quantization.identified || r.coefficients.rate_ramp.identified;
       }
     }
@@ -118,6 +127,8 @@ TEST(FitAcceptance, Tg100Gyro1SixHours) {
     }
   }
   std::printf("wls: Q or R identified in %d of %d runs\n", q_or_r_identified, runs);
+  std::printf("wls: mismatch scatter estimated in %d, short taus cut in %d of %d runs\n",
+              with_scatter, with_cut, runs);
   // K^2 (the fitted variance coefficient) beside K: the square root of an unbiased but
   // widely scattered theta_K is biased low (Jensen), which is most of K's mean error.
   double k2_err = 0, k2_se = 0;

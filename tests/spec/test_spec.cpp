@@ -50,7 +50,29 @@ TEST(BuiltinSpec, Tg100HasTable1Values) {
   expect_rel(s.range->value_si, 100.0 * deg);
   EXPECT_EQ(s.bandwidth->value_si, 50.0);
   expect_rel(s.scale_factor->value_si, 0.020 / deg);  // V/(rad/s)
-  EXPECT_EQ(builtin_spec_names(), std::vector<std::string>{"tg100"});
+  EXPECT_EQ(builtin_spec_names(), (std::vector<std::string>{"adis16405", "tg100"}));
+}
+
+TEST(BuiltinSpec, Adis16405HasDatasheetValues) {
+  const Spec s = builtin_spec("adis16405");
+  EXPECT_EQ(s.name, "adis16405");
+  EXPECT_EQ(s.source, "builtin:adis16405");
+  EXPECT_EQ(s.sensor, SensorKind::gyroscope);
+  ASSERT_TRUE(s.random_walk);
+  EXPECT_EQ(s.random_walk->value, 2.0);
+  EXPECT_EQ(s.random_walk->unit, "deg/sqrt(h)");
+  expect_rel(s.random_walk->value_si, 2.0 * deg / 60.0);
+  ASSERT_TRUE(s.bias_instability);
+  EXPECT_EQ(s.bias_instability->value, 0.007);
+  EXPECT_EQ(s.bias_instability->unit, "deg/s");
+  expect_rel(s.bias_instability->value_si, 0.007 * deg);
+  EXPECT_FALSE(s.rate_random_walk);
+  ASSERT_TRUE(s.range && s.bandwidth);
+  expect_rel(s.range->value_si, 300.0 * deg);
+  EXPECT_EQ(s.bandwidth->value_si, 330.0);
+  EXPECT_FALSE(s.scale_factor);
+  // The same spec through the name-or-path resolver the CLI uses.
+  EXPECT_EQ(resolve_spec("adis16405").bias_instability->value_si, s.bias_instability->value_si);
 }
 
 TEST(BuiltinSpec, UnknownNameListsKnownOnes) {
@@ -87,6 +109,23 @@ TEST(SpecFile, ExampleTg100AgreesWithBuiltin) {
   const auto path = (kRepo / "examples" / "specs" / "tg100.yaml").string();
   const Spec file = load_spec_file(path);
   const Spec builtin = builtin_spec("tg100");
+  EXPECT_EQ(file.name, builtin.name);
+  EXPECT_EQ(file.description, builtin.description);
+  EXPECT_EQ(file.sensor, builtin.sensor);
+  EXPECT_EQ(file.tolerance, builtin.tolerance);
+  EXPECT_EQ(file.source, path);
+  expect_same_term(file.random_walk, builtin.random_walk);
+  expect_same_term(file.bias_instability, builtin.bias_instability);
+  expect_same_term(file.rate_random_walk, builtin.rate_random_walk);
+  expect_same_rating(file.range, builtin.range);
+  expect_same_rating(file.bandwidth, builtin.bandwidth);
+  expect_same_rating(file.scale_factor, builtin.scale_factor);
+}
+
+TEST(SpecFile, ExampleAdis16405AgreesWithBuiltin) {
+  const auto path = (kRepo / "examples" / "specs" / "adis16405.yaml").string();
+  const Spec file = load_spec_file(path);
+  const Spec builtin = builtin_spec("adis16405");
   EXPECT_EQ(file.name, builtin.name);
   EXPECT_EQ(file.description, builtin.description);
   EXPECT_EQ(file.sensor, builtin.sensor);

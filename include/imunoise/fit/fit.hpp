@@ -35,6 +35,12 @@
 // coverage on simulated 6 h TG-100 records (tests/fit/test_acceptance.cpp; docs/fit.md:
 // N 94 %, B 92 %, K 98 % over 200 runs).
 //
+// Real sensors (issue 15, docs/fit.md): by default the shortest taus bent by the sensor's
+// sampling chain and interior bumps (concave bends: no sum of power laws has one) are left out,
+// a model-mismatch scatter is estimated when chi^2 rejects the model (weights and intervals
+// include it), and the flicker column's shape at the shortest taus carries the band-edge
+// ambiguity (FitOptions::exclude_distorted, model_mismatch, flicker_band_edge).
+//
 // Identification: a term is identified when zero is outside its interval. Otherwise its value
 // is 0, identified = false, ci_low = 0 and ci_high holds the upper limit, with a note saying
 // why (not significant, clamped at zero, too few taus, negative ols coefficient, not fitted).
@@ -101,6 +107,37 @@ struct FitOptions {
   /// wls: a term must dominate the fitted model at this many taus or more to stay in the fit
   /// (data sufficiency); otherwise it is reported as not identified and the rest refitted.
   int min_dominant_taus = 2;  ///< wls: which terms are present (see Selection)
+  /// Taus fitted: [tau_min_s, tau_max_s] (0: no limit). Taus outside are reported in
+  /// FitSummary::excluded_taus and in the residuals with used = false.
+  double tau_min_s = 0.0;
+  double tau_max_s = 0.0;
+  /// wls, ols: leave out the shortest taus that a sensor's sampling chain (anti-alias filter,
+  /// decimation, an axis updated at a fraction of the output rate) has bent away from any sum
+  /// of power laws. eq. 5 is a sum of power laws of tau, so log sigma^2 is a convex function of
+  /// log tau: a concave bend (the log-log slope falling by more than 3 standard deviations of
+  /// its sampling noise) at an averaging factor m <= distortion_max_m cannot come from the
+  /// noise model; every tau below the last such bend is excluded, with a note.
+  bool exclude_distorted = true;
+  std::size_t distortion_max_m = 16;
+  /// wls: model mismatch (ols, the paper's unweighted method, is left as it was: its estimate
+  /// does not minimise chi^2, so the test below would reject exact models). When the chi^2 of the fit (full model covariance) exceeds its
+  /// (1 - mismatch_test_alpha) quantile, the power-law model does not describe the curve to
+  /// within its sampling noise (a real sensor: temperature, a sinusoid, a non-1/f floor). A
+  /// relative scatter s of the curve about the model is then estimated (Paule-Mandel: chi^2 =
+  /// dof with the covariance Sigma + s^2 diag(model^2)) and used in the weights and in every
+  /// interval, so that no tau is trusted beyond the model's own accuracy and the intervals are
+  /// widened by the mismatch. false: exact-model weights (the behaviour before issue 15).
+  bool model_mismatch = true;
+  /// wls, ols: the flicker floor at the shortest taus. eq. 5's (2 ln 2/pi) B^2 is the Allan
+  /// variance of continuous 1/f rate noise integrated over each sample; discrete 1/f noise
+  /// whose spectrum runs to the Nyquist frequency (Kasdin-Walter) exceeds it by 44 % at m = 1,
+  /// 15 % at 2, 5 % at 4, 1.5 % at 8. The curve cannot tell the two apart (N dominates there
+  /// ~1000:1), yet the excess, attributed to N, biased N by +0.015 % = 0.42 interval sd on 6 h
+  /// records (26/30 coverage; the bias is per sample, so it grows against the interval with the
+  /// record length). true: the flicker column takes the midpoint of the two and carries half
+  /// their difference as a fully correlated systematic error in the covariance.
+  bool flicker_band_edge = true;
+  double mismatch_test_alpha = 1e-3;
   /// Checks every field; writes why not into *error (may be null).
   bool IsValid(std::string* error) const;
 };
@@ -122,6 +159,13 @@ struct TauResidual {
   double sd_model = 0.0;    ///< standard deviation of the estimate under the model (SI)
   double normalized = 0.0;  ///< (avar - avar_model) / sd_model
   int dominant_term = -1;   ///< term contributing most to avar_model (kQ..kSIN; -1: none)
+  bool used = true;         ///< false: left out of the fit (FitSummary::excluded_taus says why)
+};
+
+/// A tau of the curve that the fit left out, and why.
+struct ExcludedTau {
+  double tau_s = 0.0;
+  std::string reason;  ///< "sampling_chain", "bend" (an interior bump) or "tau_range"
 };
 
 /// Per-term detail behind the coefficient.
@@ -141,6 +185,12 @@ struct FitSummary {
   double chi2 = 0.0;          ///< r' Sigma^-1 r with the model covariance (correlations included)
   std::size_t dof = 0;        ///< points_used - free parameters
   double chi2_dof = 0.0;      ///< chi2 / dof (0 when dof = 0)
+  /// Relative scatter of the curve about the model estimated from the misfit (model_mismatch;
+  /// 0 when the chi^2 test accepts the model) and chi^2/dof with it in the covariance (~1).
+  double mismatch_scatter = 0.0;
+  double chi2_dof_with_mismatch = 0.0;
+  /// Taus left out of the fit (sampling-chain distortion, --tau-min/--tau-max).
+  std::vector<ExcludedTau> excluded_taus;
   std::vector<std::string> warnings;
   std::string message;        ///< one sentence on the termination
   std::string BriefReport() const;

@@ -89,6 +89,9 @@ Spec parse_spec_yaml(std::string_view yaml_text, const std::string& source);
 /// an unknown name, listing the known ones.
 ///   "tg100": TG-100 MEMS gyro, paper Table 1: ARW 0.05 deg/sqrt(h), bias instability 2 deg/h,
 ///            range +/-100 deg/s, bandwidth 50 Hz, scale factor 20 mV/(deg/s); tolerance 0.
+///   "adis16405": ADIS16405 MEMS IMU gyros, datasheet: ARW 2.0 deg/sqrt(h), in-run bias
+///            stability 0.007 deg/s, range +/-300 deg/s, bandwidth 330 Hz (digital output,
+///            no scale factor); tolerance 0.
 Spec builtin_spec(std::string_view name);
 
 /// Names of the built-in specs, sorted.
