@@ -8,5 +8,7 @@ namespace imunoise::cli {
 void setup_dev(CLI::App& app);
 void setup_simulate(CLI::App& app);
 void setup_fit(CLI::App& app);
+void setup_analyze(CLI::App& app);
+void setup_demo(CLI::App& app);
 
 }  // namespace imunoise::cli
