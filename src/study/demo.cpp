@@ -83,9 +83,10 @@ nlohmann::json demo_reference(const Study& study, const DemoOptions& options) {
       options.duration_s / 3600.0, options.seed, 100.0 * study.options.fit.level);
   std::string html = fmt::format(
       "<p class=\"soft\">Simulated with the paper's Table 2 coefficients (200 Hz, {:.3g} h, seed "
-      "{}); recovered by the fit with its {:g} % interval.</p>\n<table><tr><th>gyro</th>"
-      "<th>term</th><th>paper (Table 2)</th><th>simulated truth</th><th>recovered</th>"
-      "<th>interval</th><th>truth inside</th></tr>\n",
+      "{}); each cell: the recovered value with its {:g} % interval, and the value simulated "
+      "(Table 2). ✓: the interval contains the simulated truth.</p>\n<table class=\"matrix\">"
+      "<tr><th>gyro</th><th>N [deg/sqrt(s)]</th><th>B [deg/s]</th><th>K [deg/s/sqrt(s)]</th>"
+      "<th>Q [deg]</th></tr>\n",
       options.duration_s / 3600.0, options.seed, 100.0 * study.options.fit.level);
   for (std::size_t c = 0; c < study.channels.size() && c < preset.channels.size(); ++c) {
     const auto& ch = study.channels[c];
@@ -113,13 +114,13 @@ nlohmann::json demo_reference(const Study& study, const DemoOptions& options) {
       md += fmt::format("| {} | {} | {} | {} | {} | {} | {} |\n", ch.record.name, row.symbol,
                         row.unit, sci(row.paper), sci(row.truth),
                         k.identified ? sci(value) : std::string("–"), interval);
+      if (j == 0) html += "<tr><td style=\"text-align:left\">" + ch.record.name + "</td>";
       html += fmt::format(
-          "<tr><td>{}</td><td>{} <span class=\"soft\">{}</span></td><td class=\"num\">{}</td>"
-          "<td class=\"num\">{}</td><td class=\"num\">{}</td><td class=\"num ci\">{}</td>"
-          "<td>{}</td></tr>\n",
-          j == 0 ? ch.record.name : "", row.symbol, row.unit, sci(row.paper), sci(row.truth),
-          k.identified ? sci(value) : std::string("–"), interval,
-          row.truth == 0.0 ? "" : (inside ? "yes" : "no"));
+          "<td><span class=\"val\">{}</span> {}<br><span class=\"ci\">{}</span><br>"
+          "<span class=\"soft\">simulated {}</span></td>",
+          k.identified ? sci(value) : std::string("–"),
+          row.truth == 0.0 ? "" : (inside ? "✓" : "✗"), interval, sci(row.truth));
+      if (j == 3) html += "</tr>\n";
       ++j;
     }
   }

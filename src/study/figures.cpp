@@ -1,5 +1,7 @@
 #include "imunoise/study/figures.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace imunoise::study {
@@ -41,6 +43,35 @@ std::string ci_text(const nlohmann::json& doc) {
          " %";
 }
 
+// Axis ranges from the measured points (with their bars) so that asymptotes and datasheet
+// lines running far outside do not squash the data; lines are clipped at the frame.
+void set_ranges(nlohmann::json& figure) {
+  double x_lo = INFINITY, x_hi = -INFINITY, y_lo = INFINITY, y_hi = -INFINITY;
+  bool have_points = false;
+  for (const auto& s : figure["series"]) have_points = have_points || s["style"] == "points";
+  for (const auto& s : figure["series"]) {
+    for (const auto& x : s["x"]) {
+      if (x.is_number() && x.get<double>() > 0) {
+        x_lo = std::min(x_lo, x.get<double>());
+        x_hi = std::max(x_hi, x.get<double>());
+      }
+    }
+    if (have_points && s["style"] != "points") continue;
+    for (const char* key : {"y", "y_low", "y_high"}) {
+      if (!s.contains(key)) continue;
+      for (const auto& y : s[key]) {
+        if (y.is_number() && y.get<double>() > 0) {
+          y_lo = std::min(y_lo, y.get<double>());
+          y_hi = std::max(y_hi, y.get<double>());
+        }
+      }
+    }
+  }
+  if (!(x_hi > x_lo) || !(y_hi > y_lo)) return;
+  figure["x_range"] = {x_lo / 1.5, x_hi * 1.5};
+  figure["y_range"] = {y_lo / 2.0, y_hi * 1.6};
+}
+
 }  // namespace
 
 const char* palette_color(int index) {
@@ -68,8 +99,10 @@ nlohmann::json build_figures(const nlohmann::json& doc) {
       }
       unit = ch["unit"].get<std::string>();
       series.push_back(curve_series(*oadev, ch["name"].get<std::string>(), color));
+      series.back()["group"] = ch["name"];
       if (ch.contains("model") && !ch["model"].is_null()) {
         series.push_back({{"name", ch["name"].get<std::string>() + " model"},
+                          {"group", ch["name"]},
                           {"style", "line"}, {"color", color},
                           {"x", ch["model"]["tau_s"]}, {"y", ch["model"]["adev"]}});
       }
@@ -165,6 +198,7 @@ nlohmann::json build_figures(const nlohmann::json& doc) {
     }
     ++color;
   }
+  for (auto& f : figures) set_ranges(f);
   return figures;
 }
 

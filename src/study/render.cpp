@@ -279,8 +279,14 @@ std::string gnuplot_script(const json& figure, const std::string& svg_path,
   if (figure["x_log"].get<bool>()) s += "set logscale x\nset format x '10^{%L}'\n";
   if (figure["y_log"].get<bool>()) s += "set logscale y\nset format y '10^{%L}'\n";
   s += "set grid xtics ytics mxtics mytics lc rgb '#d8d8d8' lw 1, lc rgb '#eeeeee' lw 1\n";
-  s += "set border lc rgb '#444444'\nset key outside right top noenhanced box lc rgb '#bbbbbb' "
-       "width 1 spacing 1.1\nset bars small\n";
+  s += "set border lc rgb '#444444'\nset key inside left bottom noenhanced box lc rgb '#bbbbbb' "
+       "opaque width 1 spacing 1.1 font ',11'\nset bars small\n";
+  if (figure.contains("x_range")) {
+    s += fmt::format("set xrange [{:.10g}:{:.10g}]\n", num(figure["x_range"][0]), num(figure["x_range"][1]));
+  }
+  if (figure.contains("y_range")) {
+    s += fmt::format("set yrange [{:.10g}:{:.10g}]\n", num(figure["y_range"][0]), num(figure["y_range"][1]));
+  }
   std::string plots;
   int k = 0;
   for (const auto& series : figure["series"]) {
@@ -303,17 +309,20 @@ std::string gnuplot_script(const json& figure, const std::string& svg_path,
     s += "EOD\n";
     const std::string color = palette_color(series["color"].get<int>());
     const std::string style = str(series["style"]);
-    const std::string title = quote_gp(str(series["name"]));
+    // A fitted line grouped with its channel's points shares their key entry.
+    const std::string title = series.contains("group") && style != "points"
+                                  ? std::string("notitle")
+                                  : "title " + quote_gp(str(series["name"]));
     std::string p;
     if (style == "points") {
-      p = fmt::format("{} using 1:2:3:4 with yerrorbars pt 7 ps 0.7 lw 1.2 lc rgb '{}' title {}",
+      p = fmt::format("{} using 1:2:3:4 with yerrorbars pt 7 ps 0.7 lw 1.2 lc rgb '{}' {}",
                       block, color, title);
-      if (!bars) p = fmt::format("{} using 1:2 with points pt 7 ps 0.7 lc rgb '{}' title {}", block,
+      if (!bars) p = fmt::format("{} using 1:2 with points pt 7 ps 0.7 lc rgb '{}' {}", block,
                                  color, title);
     } else {
       const char* dash = style == "dashed" ? "dt 2" : style == "limit" ? "dt 3" : "dt 1";
       const double width = style == "line" ? 2.2 : 1.6;
-      p = fmt::format("{} using 1:2 with lines lw {} {} lc rgb '{}' title {}", block, width, dash,
+      p = fmt::format("{} using 1:2 with lines lw {} {} lc rgb '{}' {}", block, width, dash,
                       color, title);
     }
     plots += (plots.empty() ? "plot " : ", \\\n     ") + p;
@@ -358,7 +367,11 @@ td.num { text-align:right; white-space:nowrap; }
 .soft { color:var(--muted); font-size:12.5px; }
 .figs { display:grid; grid-template-columns: repeat(auto-fit, minmax(620px, 1fr)); gap:18px; }
 figure { margin:0; border:1px solid var(--line); border-radius:10px; padding:8px 10px 10px; background:#fff; }
-figure .plot { width:100%; height:460px; }
+figure .plot { width:100%; height:540px; }
+figure.hero { grid-column: 1 / -1; }
+figure.hero .plot { height:600px; }
+.matrix td { text-align:center; }
+.matrix td .val { font-weight:600; }
 figure img { width:100%; }
 figcaption { color:var(--muted); font-size:13px; padding:2px 6px; }
 ul.notes li { margin:3px 0; color:var(--muted); }
@@ -378,7 +391,8 @@ constexpr const char* kScript = R"JS(
   const report = JSON.parse(document.getElementById('report-data').textContent);
   function trace(s, unit) {
     const c = PALETTE[s.color % PALETTE.length];
-    const t = { x: s.x, y: s.y, name: s.name, type: 'scatter',
+    const t = { x: s.x, y: s.y, name: s.name, type: 'scatter', legendgroup: s.group || s.name,
+                showlegend: !s.group || s.style === 'points',
                 hovertemplate: 'τ = %{x:.4g} s<br>%{y:.4g} ' + unit + '<extra>' + s.name + '</extra>' };
     if (s.style === 'points') {
       t.mode = 'markers';
@@ -395,14 +409,16 @@ constexpr const char* kScript = R"JS(
     }
     return t;
   }
-  function axis(label, log) {
-    return { title: { text: label }, type: log ? 'log' : 'linear', exponentformat: 'power',
+  function axis(label, log, range) {
+    const r = range ? (log ? range.map(Math.log10) : range) : undefined;
+    return { range: r, autorange: r ? false : true, title: { text: label }, type: log ? 'log' : 'linear', exponentformat: 'power', dtick: log ? 1 : undefined,
              showgrid: true, gridcolor: '#e8eaee', zeroline: false, linecolor: '#888', mirror: true, ticks: 'outside' };
   }
   let drawn = 0;
   report.figures.forEach(function (fig, i) {
     const div = document.getElementById('fig-' + i);
     if (!div) { note('no element for figure ' + fig.id); return; }
+    const hero = i === 0 && fig.id.indexOf('adev_all') === 0;
     const unit = (fig.y_label.match(/\[(.*)\]$/) || ['', ''])[1];
     const annotations = [];
     fig.series.forEach(function (s) {
@@ -413,14 +429,15 @@ constexpr const char* kScript = R"JS(
                          font: { size: 12, color: PALETTE[s.color % PALETTE.length] },
                          bgcolor: 'rgba(255,255,255,0.85)' });
     });
-    const layout = { title: { text: fig.title, font: { size: 16 } }, xaxis: axis(fig.x_label, fig.x_log),
-                     yaxis: axis(fig.y_label, fig.y_log), annotations: annotations,
-                     margin: { l: 70, r: 20, t: 50, b: 55 }, hovermode: 'closest',
-                     legend: { bgcolor: 'rgba(255,255,255,0.8)', bordercolor: '#ddd', borderwidth: 1 },
+    const layout = { title: { text: fig.title, font: { size: 16 }, x: 0.01, xanchor: 'left' }, xaxis: axis(fig.x_label, fig.x_log, fig.x_range),
+                     yaxis: axis(fig.y_label, fig.y_log, fig.y_range), annotations: annotations,
+                     margin: { l: 70, r: 20, t: 50, b: hero ? 55 : 120 }, hovermode: 'closest',
+                     legend: hero ? { x: 0.01, y: 0.01, xanchor: 'left', yanchor: 'bottom', bgcolor: 'rgba(255,255,255,0.85)', bordercolor: '#ddd', borderwidth: 1, font: { size: 11 } }
+                                 : { orientation: 'h', x: 0, y: -0.2, yanchor: 'top', font: { size: 11 } },
                      font: { family: 'system-ui, -apple-system, Segoe UI, Roboto, DejaVu Sans, sans-serif' } };
     const traces = fig.series.map(function (s) { return trace(s, unit); });
     try {
-      Plotly.newPlot(div, traces, layout, { responsive: true, displaylogo: false }).then(function () {
+      Plotly.newPlot(div, traces, layout, { responsive: true, displaylogo: false, displayModeBar: 'hover' }).then(function () {
         div.setAttribute('data-rendered-points', String(div.querySelectorAll('.scatterlayer .point').length));
         div.setAttribute('data-rendered-traces', String(div.querySelectorAll('.scatterlayer .trace').length));
         drawn += 1;
@@ -492,6 +509,23 @@ std::string render_html(const json& doc, const std::string& plotly_js) {
                      html_escape(str(doc["options"]["spec"])), pass, judged);
   }
   h += "</div>\n";
+  // Figures.
+  h += "<div class=\"figs\" style=\"margin-top:18px\">\n";
+  int i = 0;
+  for (const auto& f : doc["figures"]) {
+    const std::string stem = file_stem(str(f["id"]));
+    const bool hero = i == 0 && str(f["id"]).rfind("adev_all", 0) == 0;
+    h += "<figure id=\"figure-" + html_escape(stem) + "\"" + (hero ? " class=\"hero\"" : "") + ">";
+    if (interactive) {
+      h += fmt::format("<div class=\"plot\" id=\"fig-{}\"></div>", i);
+    } else {
+      h += "<img src=\"figures/" + stem + ".svg\" alt=\"" + html_escape(str(f["title"])) + "\">";
+    }
+    h += "<figcaption>" + html_escape(str(f["caption"])) + " <a href=\"figures/" + stem +
+         ".svg\">SVG</a> · <a href=\"figures/" + stem + ".png\">PNG</a></figcaption></figure>\n";
+    ++i;
+  }
+  h += "</div>\n";
   // Noise-model table.
   const auto terms = shown_terms(doc);
   h += fmt::format("<h2>Noise model</h2>\n<p class=\"soft\">Coefficients of the paper's eq. 5 "
@@ -521,33 +555,55 @@ std::string render_html(const json& doc, const std::string& plotly_js) {
     h += "<td class=\"num\">" + g(ch["fit"]["diagnostics"]["chi2_dof"], 3) + "</td></tr>\n";
   }
   h += "</table>\n";
-  // Datasheet comparison.
+  // Datasheet comparison: one row per channel, one column per datasheet term.
   bool any_spec = false;
   for (const auto& ch : channels) any_spec = any_spec || !ch["spec_comparison"].is_null();
   if (any_spec) {
+    std::vector<std::pair<std::string, std::string>> spec_terms;  // symbol, heading
+    for (const auto& ch : channels) {
+      if (ch["spec_comparison"].is_null()) continue;
+      for (const auto& t : ch["spec_comparison"]["terms"]) {
+        if (!t.contains("spec")) continue;
+        const std::string sym = str(t["symbol"]);
+        bool known = false;
+        for (const auto& st : spec_terms) known = known || st.first == sym;
+        if (!known) {
+          spec_terms.emplace_back(sym, sym + " " + str(t["title"]) + " ≤ " + g(t["spec"]["limit"]) +
+                                           " " + str(t["spec"]["unit"]));
+        }
+      }
+      break;
+    }
     h += "<h2>Datasheet comparison: " + html_escape(str(doc["options"]["spec"])) + "</h2>\n";
     h += "<p class=\"soft\">Pass if measured ≤ spec × (1 + tolerance); conclusive when the whole "
-         "confidence interval lies on the verdict's side of the limit.</p>\n";
-    h += "<table><tr><th>channel</th><th>term</th><th>measured</th><th>datasheet</th><th>deviation</th><th>verdict</th></tr>\n";
+         "confidence interval lies on the verdict's side of the limit. Terms the datasheet does "
+         "not give are in the noise-model table.</p>\n";
+    h += "<table class=\"matrix\"><tr><th>channel</th>";
+    for (const auto& st : spec_terms) h += "<th>" + html_escape(st.second) + "</th>";
+    h += "</tr>\n";
     for (const auto& ch : channels) {
       const auto& c = ch["spec_comparison"];
       if (c.is_null()) continue;
-      for (const auto& t : c["terms"]) {
-        const json& m = t.contains("measured_in_spec_unit") ? t["measured_in_spec_unit"]
-                                                            : t["measured_customary"];
-        const std::string verdict = str(t["verdict"]);
-        const bool judged = verdict == "pass" || verdict == "fail";
-        h += fmt::format(
-            "<tr><td>{}</td><td>{} <span class=\"soft\">{}</span></td><td class=\"num\">{} {}<br><span class=\"ci\">[{}, {}]</span></td>"
-            "<td class=\"num\">{}</td><td class=\"num\">{}</td><td>{} <span class=\"soft\">{}</span></td></tr>\n",
-            html_escape(str(ch["name"])), str(t["symbol"]), html_escape(str(t["title"])),
-            g(m["value"]), html_escape(str(m["unit"])), g(m["ci_low"], 3), g(m["ci_high"], 3),
-            t.contains("spec") ? g(t["spec"]["value"]) + " " + html_escape(str(t["spec"]["unit"]))
-                               : std::string("–"),
-            t["deviation_percent"].is_number() ? fmt::format("{:+.1f} %", num(t["deviation_percent"]))
-                                               : std::string("–"),
-            pill(verdict), judged ? (t["conclusive"].get<bool>() ? "conclusive" : "inconclusive") : "");
+      h += "<tr><td style=\"text-align:left\">" + html_escape(str(ch["name"])) + "</td>";
+      for (const auto& st : spec_terms) {
+        std::string cell = "<td>–</td>";
+        for (const auto& t : c["terms"]) {
+          if (str(t["symbol"]) != st.first || !t.contains("spec")) continue;
+          const json& m = t["measured_in_spec_unit"];
+          const std::string verdict = str(t["verdict"]);
+          const bool judged = verdict == "pass" || verdict == "fail";
+          cell = fmt::format(
+              "<td><span class=\"val\">{} {}</span> <span class=\"soft\">{}</span><br>{} "
+              "<span class=\"soft\">{}</span><br><span class=\"ci\">[{}, {}]</span></td>",
+              g(m["value"]), html_escape(str(m["unit"])),
+              t["deviation_percent"].is_number() ? fmt::format("{:+.1f} %", num(t["deviation_percent"]))
+                                                 : std::string(),
+              pill(verdict), judged ? (t["conclusive"].get<bool>() ? "conclusive" : "inconclusive") : "",
+              g(m["ci_low"], 3), g(m["ci_high"], 3));
+        }
+        h += cell;
       }
+      h += "</tr>\n";
     }
     h += "</table>\n";
   }
@@ -555,22 +611,6 @@ std::string render_html(const json& doc, const std::string& plotly_js) {
     h += "<h2>" + html_escape(str(doc["reference"]["title"])) + "</h2>\n" +
          str(doc["reference"]["html"]) + "\n";
   }
-  // Figures.
-  h += "<h2>Figures</h2>\n<div class=\"figs\">\n";
-  int i = 0;
-  for (const auto& f : doc["figures"]) {
-    const std::string stem = file_stem(str(f["id"]));
-    h += "<figure id=\"figure-" + html_escape(stem) + "\">";
-    if (interactive) {
-      h += fmt::format("<div class=\"plot\" id=\"fig-{}\"></div>", i);
-    } else {
-      h += "<img src=\"figures/" + stem + ".svg\" alt=\"" + html_escape(str(f["title"])) + "\">";
-    }
-    h += "<figcaption>" + html_escape(str(f["caption"])) + " <a href=\"figures/" + stem +
-         ".svg\">SVG</a> · <a href=\"figures/" + stem + ".png\">PNG</a></figcaption></figure>\n";
-    ++i;
-  }
-  h += "</div>\n";
   // Notes.
   std::string notes;
   for (const auto& n : doc["notes"]) notes += "<li>" + html_escape(str(n)) + "</li>";
