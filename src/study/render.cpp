@@ -328,9 +328,13 @@ std::string gnuplot_script(const json& figure, const std::string& svg_path,
     plots += (plots.empty() ? "plot " : ", \\\n     ") + p;
     if (series.contains("label")) {
       const auto& l = series["label"];
-      s += fmt::format("set label {} at {:.10g},{:.10g} offset 0.6,0.8 noenhanced tc rgb '{}' "
+      // Labels right of the middle are right-aligned so that they stay inside the frame.
+      const bool right = figure.contains("x_range") &&
+                         num(l["x"]) > std::sqrt(num(figure["x_range"][0]) * num(figure["x_range"][1]));
+      s += fmt::format("set label {} at {:.10g},{:.10g} {} noenhanced tc rgb '{}' "
                        "font ',12' front\n",
-                       quote_gp(str(l["text"])), num(l["x"]), num(l["y"]), color);
+                       quote_gp(str(l["text"])), num(l["x"]), num(l["y"]),
+                       right ? "right offset -0.6,0.8" : "offset 0.6,0.8", color);
     }
   }
   s += plots + "\n";
