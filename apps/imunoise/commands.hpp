@@ -8,6 +8,8 @@ namespace imunoise::cli {
 void setup_dev(CLI::App& app);
 void setup_simulate(CLI::App& app);
 void setup_fit(CLI::App& app);
+void setup_nav(CLI::App& app);
+void setup_redundant(CLI::App& app);
 void setup_analyze(CLI::App& app);
 void setup_demo(CLI::App& app);
 

@@ -15,6 +15,8 @@ int main(int argc, char** argv) {
   imunoise::cli::setup_dev(app);
   imunoise::cli::setup_simulate(app);
   imunoise::cli::setup_fit(app);
+  imunoise::cli::setup_nav(app);
+  imunoise::cli::setup_redundant(app);
   imunoise::cli::setup_analyze(app);
   imunoise::cli::setup_demo(app);
   try {

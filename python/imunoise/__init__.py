@@ -10,10 +10,12 @@ R with 95 % intervals and verdicts) as a dict, the document of ``imunoise fit --
 ``imunoise.simulate(...)`` makes records with known noise.
 """
 from ._imunoise import InputError, deviation, fit, simulate, simulate_preset
+from ._imunoise import nav
 
 __all__ = ["InputError", "deviation", "fit", "simulate", "simulate_preset", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev",
            "totdev", "mtotdev", "ttotdev", "htotdev", "theo1", "theobr", "mtie",
            "tierms"]
+__all__ += ["nav"]  # navigation error growth (register_nav.cpp)
 
 
 def _estimator(name):

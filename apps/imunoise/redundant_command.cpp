@@ -1,0 +1,381 @@
+// imunoise redundant: a redundant (non-orthogonal) gyro unit. Geometry analysis (gains, GDOP,
+// parity, degraded geometries), the fused axes' noise from the sensors' fits (--from), fusion of
+// synchronous recordings into body rates and parity residuals (--fuse ... -o FUSED.csv) and
+// fault detection (--detect). The library does the work (include/imunoise/redundant/).
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fmt/core.h>
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "imunoise/error.hpp"
+#include "imunoise/io/binary_reader.hpp"
+#include "imunoise/io/text_reader.hpp"
+#include "imunoise/io/timestamps.hpp"
+#include "imunoise/redundant/analysis.hpp"
+#include "imunoise/redundant/fusion.hpp"
+#include "imunoise/redundant/geometry.hpp"
+#include "imunoise/redundant/report.hpp"
+#include "imunoise/redundant/sensor_fit.hpp"
+#include "imunoise/units.hpp"
+#include "output.hpp"
+
+namespace imunoise::cli {
+namespace {
+
+struct RedundantOptionsCli {
+  std::string geometry;
+  std::vector<std::string> from;
+  std::vector<std::string> fuse;
+  double rate_hz = 0.0;
+  std::string units;
+  std::string column;
+  std::string time_column;
+  std::string binary;
+  std::size_t channels = 1;
+  double scale = 1.0;
+  std::string output;        // -o FUSED.csv
+  std::string json_output;   // --json FILE
+  bool force = false;
+  bool detect = false;
+  redundant::DetectionOptions detection;
+  std::string format = "json";
+  unsigned threads = 0;
+};
+
+// The "# rate_hz R" and "# unit U ...; output unit V" lines of an imunoise simulate header.
+struct SimulateHeader {
+  double rate_hz = 0.0;
+  std::string output_unit;
+};
+
+SimulateHeader read_simulate_header(const std::string& path) {
+  SimulateHeader h;
+  std::ifstream in(path);
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("# imunoise simulate", 0) != 0) return h;
+  for (int i = 0; i < 4 && std::getline(in, line); ++i) {
+    if (line.rfind("# rate_hz ", 0) == 0) {
+      try {
+        h.rate_hz = std::stod(line.substr(10));
+      } catch (const std::exception&) {
+      }
+    }
+    const auto pos = line.find("output unit ");
+    if (pos != std::string::npos) {
+      auto rest = line.substr(pos + 12);
+      h.output_unit = rest.substr(0, rest.find_first_of(";, "));
+    }
+  }
+  return h;
+}
+
+struct Recording {
+  std::string source;
+  double rate_hz = 0.0;
+  std::vector<double> rate_si;
+};
+
+Recording read_recording(const RedundantOptionsCli& o, const std::string& file, double to_si) {
+  Recording r;
+  r.source = file;
+  if (!std::filesystem::exists(file)) throw InputError(file + ": no such file; check the path");
+  const bool binary = !o.binary.empty() || io::binary_format_from_extension(file).has_value();
+  if (binary) {
+    io::BinaryReadOptions read;
+    read.format = !o.binary.empty() ? io::parse_binary_format(o.binary) : *io::binary_format_from_extension(file);
+    read.channels = o.channels;
+    if (!o.column.empty()) {
+      const auto sel = io::parse_column_selector(o.column);
+      if (!std::holds_alternative<std::size_t>(sel)) {
+        throw InputError("--column must be a channel index for binary input, got '" + o.column + "'");
+      }
+      read.column = std::get<std::size_t>(sel);
+    }
+    read.scale = o.scale;
+    r.rate_si = io::read_binary_file(file, read);
+    r.rate_hz = o.rate_hz;
+  } else {
+    io::TextReadOptions read;
+    if (!o.column.empty()) read.column = io::parse_column_selector(o.column);
+    if (!o.time_column.empty()) read.time_column = io::parse_column_selector(o.time_column);
+    auto columns = io::read_text_file(file, read);
+    r.rate_hz = o.rate_hz;
+    if (read.time_column) {
+      const auto timing = io::check_timing(columns.time_s, file, &columns.lines, false);
+      if (o.rate_hz > 0 && std::abs(timing.rate_hz / o.rate_hz - 1.0) > 0.01) {
+        throw InputError(fmt::format("{}: --rate {} Hz disagrees with the time column ({:.6g} Hz)",
+                                     file, o.rate_hz, timing.rate_hz));
+      }
+      if (!(r.rate_hz > 0)) r.rate_hz = timing.rate_hz;
+    }
+    if (!(r.rate_hz > 0)) r.rate_hz = read_simulate_header(file).rate_hz;
+    r.rate_si = std::move(columns.values);
+    for (auto& v : r.rate_si) v *= o.scale;
+  }
+  if (r.rate_si.empty()) throw InputError(file + ": no samples");
+  for (auto& v : r.rate_si) v *= to_si;
+  if (!(r.rate_hz > 0) || !std::isfinite(r.rate_hz)) {
+    throw InputError(file + ": unknown sample rate; pass --rate HZ (or --time-column)");
+  }
+  return r;
+}
+
+// Writes the fused CSV without holding it in memory: a temporary file renamed at the end, never
+// replacing an existing file without --force.
+void write_fused_csv(const RedundantOptionsCli& o, const redundant::FusedRecord& fused,
+                     const Unit& unit, const std::string& geometry) {
+  namespace fs = std::filesystem;
+  const fs::path target(o.output);
+  if (fs::exists(target) && !o.force) {
+    throw InputError(o.output + ": file exists; imunoise does not overwrite it — choose another "
+                                "-o name or pass --force");
+  }
+  const fs::path temporary = target.string() + ".imunoise-tmp";
+  std::FILE* out = std::fopen(temporary.c_str(), "wb");
+  if (!out) throw InputError(o.output + ": cannot create the file; check the directory");
+  fmt::memory_buffer buf;
+  fmt::format_to(std::back_inserter(buf),
+                 "# imunoise redundant: fused body rates x,y,z and parity residuals p1..p{} "
+                 "(p = V m) in {}; geometry {}; rate_hz {:.9g}\n",
+                 fused.parity_rad_s.size(), unit.name, geometry, fused.rate_hz);
+  fmt::format_to(std::back_inserter(buf), "t_s,x,y,z");
+  for (std::size_t r = 0; r < fused.parity_rad_s.size(); ++r) fmt::format_to(std::back_inserter(buf), ",p{}", r + 1);
+  buf.push_back('\n');
+  const double f = 1.0 / unit.to_si;
+  const double tau0 = 1.0 / fused.rate_hz;
+  bool ok = true;
+  for (std::size_t t = 0; t < fused.samples; ++t) {
+    fmt::format_to(std::back_inserter(buf), "{:.9g}", static_cast<double>(t) * tau0);
+    for (const auto& a : fused.axes_rad_s) fmt::format_to(std::back_inserter(buf), ",{:.9g}", a[t] * f);
+    for (const auto& p : fused.parity_rad_s) fmt::format_to(std::back_inserter(buf), ",{:.9g}", p[t] * f);
+    buf.push_back('\n');
+    if (buf.size() > (1u << 20)) {
+      ok = ok && std::fwrite(buf.data(), 1, buf.size(), out) == buf.size();
+      buf.clear();
+    }
+  }
+  ok = ok && std::fwrite(buf.data(), 1, buf.size(), out) == buf.size();
+  ok = std::fclose(out) == 0 && ok;
+  if (!ok) {
+    fs::remove(temporary);
+    throw InputError(o.output + ": write failed (disk full?)");
+  }
+  fs::rename(temporary, target);
+}
+
+std::string cell(const nlohmann::json& v, const char* fmt_spec = "{:.4g}") {
+  return v.is_number() ? fmt::format(fmt::runtime(fmt_spec), v.get<double>()) : std::string("-");
+}
+
+std::string to_table(const nlohmann::json& j) {
+  std::string out = fmt::format("# redundant unit: {} ({} sensors); fusion weights {}\n",
+                                j["geometry"].get<std::string>(), j["n_sensors"].get<std::size_t>(),
+                                j["weights"].get<std::string>());
+  out += fmt::format("axis gain (fused noise / one sensor's): x {:.4f}  y {:.4f}  z {:.4f}   GDOP {:.4f}\n",
+                     j["axis_gain"][0].get<double>(), j["axis_gain"][1].get<double>(),
+                     j["axis_gain"][2].get<double>(), j["gdop"].get<double>());
+  out += fmt::format("parity space: {} row(s); detectable {}, isolable {}\n", j["parity"].size(),
+                     j["detectable"].get<bool>() ? "yes" : "no", j["isolable"].get<bool>() ? "yes" : "no");
+  for (const auto& row : j["parity"]) {
+    std::string r;
+    for (const auto& v : row) r += fmt::format(" {:+.4f}", v.get<double>());
+    out += "  V:" + r + "\n";
+  }
+  out += fmt::format("{:<7} {:>10} {:>18} {:>14}\n", "sensor", "GDOP w/o", "min detect. fault", "(window sigma)");
+  for (std::size_t i = 0; i < j["gdop_without"].size(); ++i) {
+    out += fmt::format("{:<7} {:>10} {:>18} {:>14}\n", i + 1, cell(j["gdop_without"][i]),
+                       cell(j["min_detectable_fault"][i]) + " " + j["min_detectable_fault_unit"].get<std::string>(),
+                       cell(j["min_detectable_fault_window_sigma"][i]));
+  }
+  const auto& d = j["detection"];
+  out += fmt::format("# detection: {} s window vs {} s reference, {}/h false alarms = {:.3g} per test, "
+                     "chi2({}) threshold {}\n", cell(d["window_s"]), cell(d["reference_s"]),
+                     cell(j["false_alarm_per_hour"]), d["per_test_probability"].get<double>(),
+                     d["dof"].get<std::size_t>(), cell(d["threshold"]));
+  if (j.contains("axes")) {
+    out += fmt::format("{:<5} {:>12} {:>12} {:>12}  ({})\n", "axis", "N", "B", "K", "customary units");
+    for (const auto& a : j["axes"]) {
+      out += fmt::format("{:<5} {:>12} {:>12} {:>12}  {} / {} / {}\n", a["axis"].get<std::string>(),
+                         cell(a["N"]["value"]), cell(a["B"]["value"]), cell(a["K"]["value"]),
+                         a["N"]["unit"].get<std::string>(), a["B"]["unit"].get<std::string>(),
+                         a["K"]["unit"].get<std::string>());
+    }
+  }
+  if (j.contains("faults")) {
+    out += fmt::format("# {} tests, {} alarms, {} fault(s)\n", j["tests"].get<std::size_t>(),
+                       j["alarms"].get<std::size_t>(), j["faults"].size());
+    for (const auto& f : j["faults"]) {
+      out += fmt::format("fault: sensor {} at t = {:.3f} s (detected {:.3f} s), isolated {}, T = {:.4g} > {:.4g}\n",
+                         f["sensor"].get<std::size_t>(), f["t_s"].get<double>(), f["detected_s"].get<double>(),
+                         f["isolated"].get<bool>() ? "yes" : "no", f["statistic"].get<double>(),
+                         f["threshold"].get<double>());
+    }
+  }
+  for (const auto& n : j["notes"]) out += "# note: " + n.get<std::string>() + "\n";
+  return out;
+}
+
+void run_redundant(RedundantOptionsCli& o) {
+  if (o.format != "json" && o.format != "table") throw InputError("unknown --format '" + o.format + "'; use json or table");
+  const redundant::Geometry geometry = redundant::make_geometry(o.geometry);
+  const std::size_t n = geometry.size();
+  std::string why;
+  if (!o.detection.IsValid(&why)) throw InputError("detection options: " + why);
+
+  Unit unit{"rad/s", Quantity::angular_rate, 1.0};
+  std::vector<redundant::SensorModel> models;
+  if (!o.from.empty()) {
+    if (o.from.size() != n) {
+      throw InputError(fmt::format("--from: {} fit files for the {} sensors of geometry {}; give one "
+                                   "per sensing axis, in order", o.from.size(), n, geometry.name));
+    }
+    std::vector<std::filesystem::path> paths(o.from.begin(), o.from.end());
+    models = redundant::read_fit_files(paths, unit);
+  }
+  if (!o.units.empty()) {
+    const Unit given = parse_unit(o.units);
+    if (given.quantity != Quantity::angular_rate) {
+      throw InputError("--units " + o.units + " is not an angular rate; the recordings are gyro rates (e.g. deg/s)");
+    }
+    if (!models.empty() && given.name != unit.name && unit.name != "input unit") {
+      throw InputError(fmt::format("--units {} but the fits ({}) are in {}: the recordings and the "
+                                   "fits must be in the same unit", given.name, o.from[0], unit.name));
+    }
+    if (unit.name == "input unit" && !models.empty()) {
+      for (auto& m : models) {  // fits written without a unit: their numbers are in --units
+        for (auto* c : {&m.coefficients.quantization, &m.coefficients.random_walk, &m.coefficients.bias_instability,
+                        &m.coefficients.rate_random_walk, &m.coefficients.rate_ramp}) {
+          c->value *= given.to_si;
+          c->ci_low *= given.to_si;
+          c->ci_high *= given.to_si;
+        }
+      }
+    }
+    unit = given;
+  }
+  if (o.detect && o.fuse.empty()) throw InputError("--detect runs on recordings: add --fuse F1 ... Fn");
+  if (!o.output.empty() && o.fuse.empty()) throw InputError("-o writes the fused recording: add --fuse F1 ... Fn");
+
+  redundant::AnalysisOptions ao;
+  ao.detection = o.detection;
+  std::optional<redundant::FusedRecord> fused;
+  redundant::Analysis analysis;
+  if (!o.fuse.empty()) {
+    if (o.fuse.size() != n) {
+      throw InputError(fmt::format("--fuse: {} recordings for the {} sensors of geometry {}; give "
+                                   "one per sensing axis, in order", o.fuse.size(), n, geometry.name));
+    }
+    if (o.units.empty() && models.empty()) {
+      throw InputError("--fuse needs the unit of the recordings' values: pass --units deg/s (or rad/s, ...)");
+    }
+    // Recordings written by `imunoise simulate` state their unit: they must agree.
+    std::string first_unit, first_unit_file;
+    for (const auto& f : o.fuse) {
+      const auto h = read_simulate_header(f);
+      if (h.output_unit.empty()) continue;
+      if (first_unit.empty()) {
+        first_unit = h.output_unit;
+        first_unit_file = f;
+      } else if (h.output_unit != first_unit) {
+        throw InputError(fmt::format("{} is in {} but {} is in {}: the recordings must be in one "
+                                     "unit (convert them, or fuse them separately)", f, h.output_unit,
+                                     first_unit_file, first_unit));
+      }
+    }
+    if (!first_unit.empty() && !o.units.empty() && parse_unit(first_unit).name != unit.name) {
+      throw InputError(fmt::format("{} is in {} (its header says so) but --units is {}: pass "
+                                   "--units {}", first_unit_file, first_unit, o.units, first_unit));
+    }
+    std::vector<Recording> recs;
+    for (const auto& f : o.fuse) recs.push_back(read_recording(o, f, unit.to_si));
+    for (std::size_t i = 1; i < n; ++i) {
+      if (std::abs(recs[i].rate_hz / recs[0].rate_hz - 1.0) > 1e-6) {
+        throw InputError(fmt::format("{} is sampled at {:.9g} Hz but {} at {:.9g} Hz: the recordings "
+                                     "must be synchronous (resample them first)", recs[i].source,
+                                     recs[i].rate_hz, recs[0].source, recs[0].rate_hz));
+      }
+    }
+    std::size_t len = recs[0].rate_si.size();
+    for (const auto& r : recs) len = std::min(len, r.rate_si.size());
+    for (auto& r : recs) {
+      if (r.rate_si.size() != len) {
+        fmt::print(stderr, "imunoise: note: {} has {} samples; the shortest recording has {}: its "
+                           "last {} samples are not used\n", r.source, r.rate_si.size(), len,
+                   r.rate_si.size() - len);
+        r.rate_si.resize(len);
+      }
+    }
+    if (models.empty() && o.detect) {
+      fmt::print(stderr, "imunoise: note: no --from fits: each recording's noise model is fitted "
+                         "from the recording itself (a fault inside it inflates its model)\n");
+      for (const auto& r : recs) models.push_back(redundant::fit_sensor_model(r.rate_si, r.rate_hz, r.source));
+    }
+    analysis = redundant::analyze_unit(geometry, models, ao);
+    redundant::FusionOptions fo;
+    fo.detect = o.detect;
+    fo.detection = o.detection;
+    fo.threads = o.threads ? o.threads : std::max(1u, std::thread::hardware_concurrency());
+    std::vector<std::span<const double>> spans;
+    for (const auto& r : recs) spans.emplace_back(r.rate_si);
+    fused = redundant::fuse_records(analysis, spans, recs[0].rate_hz, fo);
+    if (!o.output.empty()) write_fused_csv(o, *fused, unit, geometry.name);
+  } else {
+    analysis = redundant::analyze_unit(geometry, models, ao);
+  }
+  const nlohmann::json doc = redundant::report_json(
+      analysis, unit, fused && fused->detection ? &*fused->detection : nullptr);
+  const std::string text = o.format == "json" ? doc.dump(1) + "\n" : to_table(doc);
+  OutputOptions out;
+  out.path = o.json_output;
+  out.force = o.force;
+  write_output(out, text);
+}
+
+}  // namespace
+
+void setup_redundant(CLI::App& app) {
+  auto o = std::make_shared<RedundantOptionsCli>();
+  auto* c = app.add_subcommand("redundant",
+                               "redundant gyro unit: geometry (gains, GDOP, parity), fused-axis noise, "
+                               "fusion of recordings, fault detection and isolation");
+  c->add_option("--geometry", o->geometry,
+                "tetra, cone:N:DEG, 3+1, dodeca, or a YAML/CSV file of unit vectors or azimuth,elevation (deg)")
+      ->required();
+  c->add_option("--from", o->from, "the sensors' fits (imunoise fit --format json), one per axis, in order");
+  c->add_option("--fuse", o->fuse, "synchronous recordings, one per axis, in order (any format dev reads)");
+  c->add_option("--rate", o->rate_hz, "sample rate of the recordings (Hz)");
+  c->add_option("--units", o->units, "unit of the recordings' values, e.g. deg/s");
+  c->add_option("--column", o->column, "column of the rate in each recording (0-based index or name)");
+  c->add_option("--time-column", o->time_column, "column of timestamps (derives and checks the rate)");
+  c->add_option("--binary", o->binary, "raw binary recordings: f32|f64|i16|i32[:le|be]");
+  c->add_option("--channels", o->channels, "interleaved channels in binary recordings")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{65536}));
+  c->add_option("--scale", o->scale, "multiply raw values by this factor");
+  c->add_option("-o,--output", o->output, "write the fused recording (CSV t_s,x,y,z,p1..pk) to FILE");
+  c->add_option("--json", o->json_output, "write the report to FILE instead of standard output");
+  c->add_flag("--force", o->force, "replace existing output files");
+  c->add_flag("--detect", o->detect, "fault detection and isolation on the recordings");
+  c->add_option("--window", o->detection.window_s, "detection test window (s)")->capture_default_str();
+  c->add_option("--reference", o->detection.reference_s, "detection reference window before it (s)")
+      ->capture_default_str();
+  c->add_option("--false-alarm-rate", o->detection.false_alarm_per_hour, "false alarms per hour of clean data")
+      ->capture_default_str();
+  c->add_option("--detection-probability", o->detection.detection_probability,
+                "probability of detecting the minimum detectable fault in one test")
+      ->capture_default_str();
+  c->add_option("--format", o->format, "json or table")->capture_default_str();
+  c->add_option("--threads", o->threads, "worker threads (0 = all cores)");
+  c->callback([o] { run_redundant(*o); });
+}
+
+}  // namespace imunoise::cli

@@ -1,0 +1,57 @@
+"""imunoise.nav mirrors tests/nav: references.md's check values and the JSON document."""
+import numpy as np
+import pytest
+
+import imunoise
+
+
+def test_arw_path_error_and_paper_longitude():
+    # references.md: N = 8.9e-4 deg/sqrt(s) alone -> 8.33 km path error at 1 h (within 0.5 %);
+    # the paper's eq. 6 with that N read as sigma_eps -> the published 3.9 deg longitude.
+    r = imunoise.nav(N=8.9e-4, model=["paper", "schuler", "covariance"], earth_rate=False)
+    paper, schuler, cov = r["models"]
+    assert isinstance(schuler["path_m"], np.ndarray)
+    assert schuler["t_s"][-1] == 3600.0
+    assert schuler["path_m"][-1] == pytest.approx(8.33e3, rel=5e-3)
+    assert cov["path_m"][-1] == pytest.approx(schuler["path_m"][-1], rel=1e-6)
+    assert paper["lon_deg"][-1] == pytest.approx(3.9, abs=0.05)
+    assert paper["published"]["lon_deg"] == 3.9
+
+
+def test_constant_drift_and_random_walk():
+    r = imunoise.nav(bias=1.0, units="deg/h", model="schuler")
+    assert r["models"][0]["path_m"][-1] == pytest.approx(135.5e3, rel=5e-3)
+    r = imunoise.nav(K=1.5e-5, model="schuler")
+    assert r["models"][0]["path_m"][-1] == pytest.approx(214.7e3, rel=5e-3)
+
+
+def test_from_a_fit_dict():
+    y = imunoise.simulate(rate=50.0, duration=2000.0, N=8.9e-4, seed=5)
+    fit = imunoise.fit(y, 50.0, units="deg/s")
+    r = imunoise.nav(fit=fit, model="schuler", hours=0.5)
+    assert r["axes"][1]["N_deg_sqrt_s"] == pytest.approx(fit["terms"]["N"]["value"], rel=1e-12)
+    assert any("absent terms" in n for n in r["notes"])
+
+
+def test_montecarlo_has_standard_errors():
+    r = imunoise.nav(N=8.9e-4, model="montecarlo", runs=50, hours=0.25, step=300)
+    mc = r["models"][0]
+    assert mc["runs"] == 50
+    assert mc["path_se_m"].shape == mc["path_m"].shape
+    assert np.all(np.isfinite(mc["path_m"]))
+
+
+def test_bad_input():
+    with pytest.raises(ValueError, match="angular rate"):
+        imunoise.nav(N=1e-3, units="m/s^2")
+    with pytest.raises(ValueError, match="hours"):
+        imunoise.nav(N=1e-3, hours=0)
+    with pytest.raises(ValueError, match="latitude"):
+        imunoise.nav(N=1e-3, latitude=95)
+    with pytest.raises(ValueError, match="no noise term"):
+        imunoise.nav()
+    with pytest.raises(ValueError, match="missing field 'terms'"):
+        imunoise.nav(fit={"unit": "deg/s"})
+    r = imunoise.nav(N=1e-3, latitude=90, model="schuler")
+    assert r["models"][0]["lon_deg"] is None
+    assert r["models"][0]["path_m"][-1] > 0

@@ -1,0 +1,225 @@
+#include "error_model.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "imunoise/nav/schuler.hpp"
+
+namespace imunoise::nav::detail {
+namespace {
+
+double w0_of(const NavOptions& o) { return schuler::frequency_rad_s(o.earth.gravity_m_s2, o.earth.radius_m); }
+
+// A white-noise input: column g of the state equation with intensity (two-sided PSD) q.
+struct WhiteSource {
+  int state = -1;  // the noise state it drives (-1: it enters the nav states directly)
+  Eigen::VectorXd g;
+  double q = 0.0;
+};
+
+// Van Loan (1978): for x' = F x + g w, E[w w'] = q delta, the discrete noise over h is
+// Qd = int_0^h e^{Fs} g g' e^{F's} ds q = (E22' E12) q with E = exp([[-F, g g'], [0, F']] h).
+// The block is formed with unit intensity and scaled afterwards: exp's error is relative to
+// the norm of the whole block, so a tiny q inside it would lose its digits.
+Eigen::MatrixXd van_loan(const Eigen::MatrixXd& f, const Eigen::VectorXd& g, double h) {
+  const Eigen::Index n = f.rows();
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  m.topLeftCorner(n, n) = -f * h;
+  m.topRightCorner(n, n) = g * g.transpose() * h;
+  m.bottomRightCorner(n, n) = f.transpose() * h;
+  const Eigen::MatrixXd e = m.exp();
+  Eigen::MatrixXd qd = e.bottomRightCorner(n, n).transpose() * e.topRightCorner(n, n);
+  return 0.5 * (qd + qd.transpose());
+}
+
+// int_0^h e^{Fs} ds b: the response over one step to a constant input b.
+Eigen::VectorXd step_input(const Eigen::MatrixXd& f, const Eigen::VectorXd& b, double h) {
+  const Eigen::Index n = f.rows();
+  Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n + 1, n + 1);
+  m.topLeftCorner(n, n) = f * h;
+  m.topRightCorner(n, 1) = b * h;
+  const Eigen::MatrixXd e = m.exp();
+  return e.topRightCorner(n, 1);
+}
+
+}  // namespace
+
+FlickerRange flicker_range(const NavOptions& o) { return {o.dt_s, std::max(o.duration_s, 10.0 * o.dt_s)}; }
+
+AxisProcesses axis_processes(const GyroTerms& t, const FlickerRange& range) {
+  AxisProcesses p;
+  double white2 = t.n_rad_sqrt_s * t.n_rad_sqrt_s;
+  if (t.b_rad_s > 0.0) {
+    const sim::FlickerBank bank = sim::design_flicker_bank(t.b_rad_s, range.tau_min_s, range.tau_max_s);
+    p.gauss_markov = bank.poles;
+    white2 += bank.white_n_unit_sqrt_s * bank.white_n_unit_sqrt_s;
+  }
+  if (t.gm_sigma_rad_s > 0.0) p.gauss_markov.push_back({t.gm_sigma_rad_s, t.gm_time_s});
+  p.white_n_rad_sqrt_s = std::sqrt(white2);
+  return p;
+}
+
+NavMatrix nav_dynamics(const NavOptions& o) {
+  const double w0 = w0_of(o);
+  const double omega = o.earth_rate ? o.earth.rotation_rad_s : 0.0;
+  const double sl = std::sin(o.latitude_rad), cl = std::cos(o.latitude_rad);
+  const bool pole = std::abs(cl) < 1e-12;
+  const double tl = pole ? 0.0 : sl / cl;
+  NavMatrix f = NavMatrix::Zero();
+  f(0, 2) = w0;
+  f(1, 3) = w0;
+  f(2, 5) = w0;
+  f(2, 3) = -2.0 * omega * sl;
+  f(3, 4) = -w0;
+  f(3, 2) = 2.0 * omega * sl;
+  f(4, 5) = -omega * sl;
+  f(4, 3) = w0;
+  f(4, 0) = -omega * sl;
+  f(5, 4) = omega * sl;
+  f(5, 6) = omega * cl;
+  f(5, 2) = -w0;
+  f(6, 5) = -omega * cl;
+  f(6, 3) = -tl * w0;
+  f(6, 0) = -omega * cl;
+  return f;
+}
+
+NavStep nav_step(const NavOptions& o) {
+  const NavMatrix f = nav_dynamics(o);
+  NavStep s;
+  s.phi = (f * o.dt_s).exp();
+  const Eigen::MatrixXd fd = f;
+  for (int a = 0; a < 3; ++a) {
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(kNavStates);
+    b(4 + a) = -1.0;  // eps enters psi_a' with a minus sign
+    s.gamma.col(a) = step_input(fd, b, o.dt_s);
+  }
+  return s;
+}
+
+DiscreteModel discrete_model(const NavOptions& o, const std::array<GyroTerms, 3>& terms) {
+  const double w0 = w0_of(o);
+  const double h = o.dt_s;
+  const FlickerRange range = flicker_range(o);
+
+  // Count and place the noise states.
+  struct AxisLayout {
+    int rrw = -1, bias = -1, ramp = -1, quant = -1;
+    std::vector<int> gm;
+    AxisProcesses proc;
+  };
+  std::array<AxisLayout, 3> layout;
+  int n = kNavStates;
+  for (int a = 0; a < 3; ++a) {
+    const GyroTerms& t = terms[static_cast<std::size_t>(a)];
+    AxisLayout& l = layout[static_cast<std::size_t>(a)];
+    l.proc = axis_processes(t, range);
+    if (t.k_rad_s_sqrt_s > 0.0) l.rrw = n++;
+    if (t.bias_rad_s != 0.0) l.bias = n++;
+    if (t.r_rad_s2 != 0.0) {
+      l.ramp = n;
+      n += 2;
+    }
+    for (std::size_t i = 0; i < l.proc.gauss_markov.size(); ++i) l.gm.push_back(n++);
+  }
+  const int n_continuous = n;
+  for (int a = 0; a < 3; ++a) {
+    if (terms[static_cast<std::size_t>(a)].q_rad > 0.0) layout[static_cast<std::size_t>(a)].quant = n++;
+  }
+
+  Eigen::MatrixXd f = Eigen::MatrixXd::Zero(n_continuous, n_continuous);
+  f.topLeftCorner(kNavStates, kNavStates) = nav_dynamics(o);
+  Eigen::MatrixXd p0 = Eigen::MatrixXd::Zero(n, n);
+  std::vector<WhiteSource> sources;
+  for (int a = 0; a < 3; ++a) {
+    const GyroTerms& t = terms[static_cast<std::size_t>(a)];
+    const AxisLayout& l = layout[static_cast<std::size_t>(a)];
+    const int psi = 4 + a;
+    auto feed = [&](int state) { f(psi, state) = -w0; };  // eps_a = w0 * (scaled state)
+    if (l.proc.white_n_rad_sqrt_s > 0.0) {
+      WhiteSource s;
+      s.g = Eigen::VectorXd::Zero(n_continuous);
+      s.g(psi) = -1.0;
+      s.q = l.proc.white_n_rad_sqrt_s * l.proc.white_n_rad_sqrt_s;
+      sources.push_back(s);
+    }
+    if (l.rrw >= 0) {
+      feed(l.rrw);
+      WhiteSource s;
+      s.state = l.rrw;
+      s.g = Eigen::VectorXd::Zero(n_continuous);
+      s.g(l.rrw) = 1.0;
+      s.q = (t.k_rad_s_sqrt_s / w0) * (t.k_rad_s_sqrt_s / w0);
+      sources.push_back(s);
+    }
+    if (l.bias >= 0) {
+      feed(l.bias);
+      p0(l.bias, l.bias) = (t.bias_rad_s / w0) * (t.bias_rad_s / w0);
+    }
+    if (l.ramp >= 0) {
+      // eps = r t: scaled state e = eps / w0 with e' = s, s = r / w0 constant, e(0) = 0.
+      feed(l.ramp);
+      f(l.ramp, l.ramp + 1) = 1.0;
+      p0(l.ramp + 1, l.ramp + 1) = (t.r_rad_s2 / w0) * (t.r_rad_s2 / w0);
+    }
+    for (std::size_t i = 0; i < l.gm.size(); ++i) {
+      const int st = l.gm[i];
+      const sim::GaussMarkovPole& pole = l.proc.gauss_markov[i];
+      feed(st);
+      f(st, st) = -1.0 / pole.time_s;
+      p0(st, st) = (pole.sigma_unit / w0) * (pole.sigma_unit / w0);  // started stationary
+      WhiteSource s;
+      s.state = st;
+      s.g = Eigen::VectorXd::Zero(n_continuous);
+      s.g(st) = 1.0;
+      s.q = 2.0 * (pole.sigma_unit / w0) * (pole.sigma_unit / w0) / pole.time_s;
+      sources.push_back(s);
+    }
+  }
+
+  DiscreteModel d;
+  d.phi = Eigen::MatrixXd::Zero(n, n);
+  d.qd = Eigen::MatrixXd::Zero(n, n);
+  d.phi.topLeftCorner(n_continuous, n_continuous) = (f * h).exp();
+  // Each source drives only its own state and, through it, the nav states: its Qd lives on
+  // that sub-system, computed alone (so each keeps full relative precision) and added.
+  for (const WhiteSource& s : sources) {
+    std::vector<int> idx;
+    for (int i = 0; i < kNavStates; ++i) idx.push_back(i);
+    if (s.state >= 0) idx.push_back(s.state);
+    const auto m = static_cast<Eigen::Index>(idx.size());
+    Eigen::MatrixXd fs(m, m);
+    Eigen::VectorXd gs(m);
+    for (Eigen::Index i = 0; i < m; ++i) {
+      gs(i) = s.g(idx[static_cast<std::size_t>(i)]);
+      for (Eigen::Index j = 0; j < m; ++j) fs(i, j) = f(idx[static_cast<std::size_t>(i)], idx[static_cast<std::size_t>(j)]);
+    }
+    const Eigen::MatrixXd q = van_loan(fs, gs, h) * s.q;
+    for (Eigen::Index i = 0; i < m; ++i) {
+      for (Eigen::Index j = 0; j < m; ++j) d.qd(idx[static_cast<std::size_t>(i)], idx[static_cast<std::size_t>(j)]) += q(i, j);
+    }
+  }
+  // Quantization: eps_k = (q_{k+1} - q_k) / h over step k, q white with RMS Q (the
+  // simulator's model). The state holds q_k; the new q_{k+1} is this step's noise.
+  const Eigen::MatrixXd fnav = nav_dynamics(o);
+  for (int a = 0; a < 3; ++a) {
+    const AxisLayout& l = layout[static_cast<std::size_t>(a)];
+    if (l.quant < 0) continue;
+    const double q = terms[static_cast<std::size_t>(a)].q_rad;
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(kNavStates);
+    b(4 + a) = -1.0;
+    const Eigen::VectorXd gamma = step_input(fnav, b, h) / h;
+    d.phi.block(0, l.quant, kNavStates, 1) = -gamma;
+    Eigen::VectorXd col = Eigen::VectorXd::Zero(n);
+    col.head(kNavStates) = gamma;
+    col(l.quant) = 1.0;
+    d.qd += col * col.transpose() * (q * q);
+    p0(l.quant, l.quant) = q * q;
+  }
+  d.p0 = p0;
+  return d;
+}
+
+}  // namespace imunoise::nav::detail

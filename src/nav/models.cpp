@@ -1,0 +1,175 @@
+// The paper, schuler and covariance models (Monte Carlo is in montecarlo.cpp).
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <Eigen/Eigenvalues>
+
+#include "error_model.hpp"
+#include "text.hpp"
+#include "imunoise/nav/models.hpp"
+#include "imunoise/nav/paper.hpp"
+#include "imunoise/nav/schuler.hpp"
+
+namespace imunoise::nav {
+namespace {
+
+double w0_of(const NavOptions& o) { return schuler::frequency_rad_s(o.earth.gravity_m_s2, o.earth.radius_m); }
+
+bool pole(const NavOptions& o) { return std::abs(std::cos(o.latitude_rad)) < 1e-12; }
+
+// Fills lat, lon, north, east, radial from the variances of th_N and th_E (rad^2).
+void fill_from_variances(const NavOptions& o, double var_n, double var_e, ModelSeries& s) {
+  const double r = o.earth.radius_m;
+  const double sn = std::sqrt(std::max(var_n, 0.0)), se = std::sqrt(std::max(var_e, 0.0));
+  s.lat_rad.push_back(sn);
+  if (!pole(o)) s.lon_rad.push_back(se / std::abs(std::cos(o.latitude_rad)));
+  s.north_m.push_back(r * sn);
+  s.east_m.push_back(r * se);
+  s.radial_m.push_back(r * std::sqrt(std::max(var_n + var_e, 0.0)));
+}
+
+// Variance of the position angle of one Schuler channel driven by one gyro's terms.
+double channel_variance(const GyroTerms& t, const detail::FlickerRange& range, double h, double time,
+                        double w0) {
+  const detail::AxisProcesses p = detail::axis_processes(t, range);
+  auto sq = [](double v) { return v * v; };
+  double var = sq(schuler::constant_drift_rad(t.bias_rad_s, time, w0)) +
+               sq(schuler::rate_ramp_rad(t.r_rad_s2, time, w0)) +
+               sq(schuler::white_rad(p.white_n_rad_sqrt_s, time, w0)) +
+               sq(schuler::random_walk_rad(t.k_rad_s_sqrt_s, time, w0)) +
+               sq(schuler::quantization_rad(t.q_rad, h, time, w0));
+  for (const auto& gm : p.gauss_markov) var += sq(schuler::gauss_markov_rad(gm.sigma_unit, gm.time_s, time, w0));
+  return var;
+}
+
+// (phi_m, q_m) = m steps of x <- phi x + w, cov w = qd, by binary powers; each product is a
+// sum of positive semi-definite terms, symmetrized.
+void compose(const Eigen::MatrixXd& phi, const Eigen::MatrixXd& qd, long m, Eigen::MatrixXd& phi_m,
+             Eigen::MatrixXd& q_m) {
+  const Eigen::Index n = phi.rows();
+  phi_m = Eigen::MatrixXd::Identity(n, n);
+  q_m = Eigen::MatrixXd::Zero(n, n);
+  Eigen::MatrixXd base_phi = phi, base_q = qd;
+  while (m > 0) {
+    if (m & 1) {
+      q_m = base_phi * q_m * base_phi.transpose() + base_q;
+      q_m = 0.5 * (q_m + q_m.transpose()).eval();
+      phi_m = base_phi * phi_m;
+    }
+    m >>= 1;
+    if (m > 0) {
+      base_q = base_phi * base_q * base_phi.transpose() + base_q;
+      base_q = 0.5 * (base_q + base_q.transpose()).eval();
+      base_phi = base_phi * base_phi;
+    }
+  }
+}
+
+}  // namespace
+
+ModelSeries paper_series(const NavOptions& o, const AxisTerms& terms, const std::vector<double>& t_s) {
+  ModelSeries s;
+  s.model = Model::paper;
+  const double w0 = w0_of(o);
+  const double eps = o.paper_sigma_eps_rad_s ? *o.paper_sigma_eps_rad_s
+                                              : terms[1].n_rad_sqrt_s * 1.0;  // N's value read as a rate (x 1/sqrt(s))
+  s.paper_sigma_eps_rad_s = eps;
+  using detail::g6;
+  s.assumptions =
+      "the paper's eq. 6 as published: lat = (e/w0)|cos w0t - 1|, path = (e R/w0)|sin w0t - w0t|, "
+      "lon = (e/w0)|sin w0t - w0t| with w0 = sqrt(g/R) = " + g6(w0) + " rad/s and sigma_eps e = " +
+      g6(eps * 180.0 / std::numbers::pi) + " deg/s (" +
+      (o.paper_sigma_eps_rad_s ? "given" : "the paper's reading: the east gyro's N value, deg/sqrt(s) read as deg/s") +
+      "); the latitude line is the velocity-error shape, not the drift's latitude response; no latitude "
+      "factor on longitude; east = R lon, radial = sqrt(2) path (the paper gives none); reproduces the "
+      "published 3.9 deg longitude at 1 h from gyro 1's N = 8.9e-4, not 0.37 deg nor 22.6 km "
+      "(docs/navigation.md)";
+  for (double t : t_s) {
+    s.t_s.push_back(t);
+    const double lat = paper::latitude_rad(eps, t, w0);
+    const double lon = paper::longitude_rad(eps, t, w0);
+    const double path = paper::path_m(eps, t, w0, o.earth.radius_m);
+    s.lat_rad.push_back(lat);
+    if (!pole(o)) s.lon_rad.push_back(lon);
+    s.north_m.push_back(path);
+    s.east_m.push_back(o.earth.radius_m * lon);
+    s.radial_m.push_back(std::numbers::sqrt2 * path);
+  }
+  return s;
+}
+
+ModelSeries schuler_series(const NavOptions& o, const AxisTerms& terms, const std::vector<double>& t_s) {
+  ModelSeries s;
+  s.model = Model::schuler;
+  const double w0 = w0_of(o);
+  const detail::FlickerRange range = detail::flicker_range(o);
+  using detail::g6;
+  s.assumptions =
+      "single-channel Schuler loop per level axis (w0 = sqrt(g/R) = " + g6(w0) + " rad/s, R = " +
+      g6(o.earth.radius_m) + " m, g = " + g6(o.earth.gravity_m_s2) +
+      " m/s^2), closed forms per noise term added in variance: constant drift, ramp, white (N), rate random "
+      "walk (K), Gauss-Markov, quantization (white angle noise at dt = " + g6(o.dt_s) +
+      " s); B as the simulator's Gauss-Markov bank over [" + g6(range.tau_min_s) + ", " + g6(range.tau_max_s) +
+      "] s; east gyro -> north error (latitude, path), north gyro -> east error (longitude = east / (R cos L)); "
+      "no Earth rate, no coupling, down gyro ignored";
+  for (double t : t_s) {
+    s.t_s.push_back(t);
+    const double var_n = channel_variance(terms[1], range, o.dt_s, t, w0);
+    const double var_e = channel_variance(terms[0], range, o.dt_s, t, w0);
+    fill_from_variances(o, var_n, var_e, s);
+  }
+  return s;
+}
+
+ModelSeries covariance_series(const NavOptions& o, const AxisTerms& terms, const std::vector<double>& t_s) {
+  ModelSeries s;
+  s.model = Model::covariance;
+  const detail::DiscreteModel d = detail::discrete_model(o, terms);
+  const detail::FlickerRange range = detail::flicker_range(o);
+  using detail::g6;
+  s.assumptions =
+      "linearised NED error model of a stationary level INS at latitude " + g6(o.latitude_rad * 180.0 / std::numbers::pi) +
+      " deg: both horizontal channels and the azimuth (phi-angle form, Titterton & Weston ch. 12), " +
+      (o.earth_rate ? "with Earth rate and Coriolis coupling" : "Earth rate and Coriolis off") +
+      "; vertical channel not modelled; noise as states (rate random walk, bias, ramp, Gauss-Markov, B as the "
+      "simulator's Gauss-Markov bank over [" + g6(range.tau_min_s) + ", " + g6(range.tau_max_s) +
+      "] s, quantization at dt); exact discrete transition exp(F dt) and Van Loan noise at dt = " + g6(o.dt_s) +
+      " s; P <- Phi P Phi' + Qd (a sum of positive semi-definite terms), composed by doubling to the reporting step, symmetrized after every product; " +
+      std::to_string(d.phi.rows()) + " states";
+  // The discrete model is exact at dt; between reported times its m-fold composition
+  // (Phi^m, sum_j Phi^j Qd Phi^j') is formed by doubling, which is the same propagation in
+  // log2(m) products instead of m.
+  Eigen::MatrixXd p = d.p0;
+  long k = 0;
+  long cached_m = -1;
+  Eigen::MatrixXd phi_m, q_m;
+  for (double t : t_s) {
+    const long target = std::lround(t / o.dt_s);
+    if (target > k) {
+      const long m = target - k;
+      if (m != cached_m) {
+        compose(d.phi, d.qd, m, phi_m, q_m);
+        cached_m = m;
+      }
+      p = phi_m * p * phi_m.transpose() + q_m;
+      p = 0.5 * (p + p.transpose()).eval();
+      k = target;
+    }
+    s.t_s.push_back(t);
+    fill_from_variances(o, p(0, 0), p(1, 1), s);
+  }
+  CovarianceCheck check;
+  check.states = static_cast<std::size_t>(p.rows());
+  const double scale = p.cwiseAbs().maxCoeff();
+  check.max_asymmetry = scale > 0 ? (p - p.transpose()).cwiseAbs().maxCoeff() / scale : 0.0;
+  // Eigenvalues of the correlation form D^-1/2 P D^-1/2: the states differ by orders of magnitude.
+  Eigen::VectorXd dinv = p.diagonal().cwiseMax(1e-300).cwiseSqrt().cwiseInverse();
+  const Eigen::MatrixXd c = dinv.asDiagonal() * p * dinv.asDiagonal();
+  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(c, Eigen::EigenvaluesOnly).eigenvalues();
+  check.min_eigenvalue_ratio = ev.maxCoeff() > 0 ? ev.minCoeff() / ev.maxCoeff() : 0.0;
+  s.covariance_check = check;
+  return s;
+}
+
+}  // namespace imunoise::nav

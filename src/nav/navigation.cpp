@@ -1,0 +1,184 @@
+#include "imunoise/nav/navigation.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "imunoise/error.hpp"
+#include "imunoise/nav/models.hpp"
+
+namespace imunoise::nav {
+
+const char* model_name(Model m) {
+  switch (m) {
+    case Model::paper: return "paper";
+    case Model::schuler: return "schuler";
+    case Model::covariance: return "covariance";
+    case Model::montecarlo: return "montecarlo";
+  }
+  return "?";
+}
+
+std::vector<Model> parse_models(const std::string& list) {
+  if (list == "all") return {Model::paper, Model::schuler, Model::covariance, Model::montecarlo};
+  std::vector<Model> out;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    const std::string name = list.substr(start, comma - start);
+    bool found = false;
+    for (Model m : {Model::paper, Model::schuler, Model::covariance, Model::montecarlo}) {
+      if (name == model_name(m)) {
+        found = true;
+        bool seen = false;
+        for (Model x : out) seen = seen || x == m;
+        if (!seen) out.push_back(m);
+      }
+    }
+    if (!found) {
+      throw InputError("--model: unknown model '" + name +
+                       "'; use a comma list of paper, schuler, covariance, montecarlo (or all)");
+    }
+    start = comma + 1;
+  }
+  return out;
+}
+
+GyroTerms terms_of(const GyroAxisNoise& axis) {
+  const NoiseCoefficients& c = axis.coefficients;
+  auto v = [](const Coefficient& k) { return k.identified ? std::abs(k.value) : 0.0; };
+  GyroTerms t;
+  t.q_rad = v(c.quantization);
+  t.n_rad_sqrt_s = v(c.random_walk);
+  t.b_rad_s = v(c.bias_instability);
+  t.k_rad_s_sqrt_s = v(c.rate_random_walk);
+  t.r_rad_s2 = c.rate_ramp.identified ? c.rate_ramp.value : 0.0;
+  if (c.gauss_markov && c.gauss_markov->sigma.identified && c.gauss_markov->correlation_time_s.identified &&
+      c.gauss_markov->sigma.value > 0.0) {
+    t.gm_sigma_rad_s = c.gauss_markov->sigma.value;
+    t.gm_time_s = c.gauss_markov->correlation_time_s.value;
+  }
+  t.bias_rad_s = axis.bias_rad_s;
+  return t;
+}
+
+bool NavOptions::IsValid(std::string* why) const {
+  auto fail = [why](const std::string& m) {
+    if (why) *why = m;
+    return false;
+  };
+  if (!(duration_s > 0.0) || !std::isfinite(duration_s)) {
+    return fail("the duration must be positive and finite (--hours H, e.g. --hours 1)");
+  }
+  if (!(dt_s > 0.0) || !std::isfinite(dt_s)) return fail("the propagation step must be positive (--dt S, e.g. --dt 1)");
+  if (!(step_s > 0.0) || !std::isfinite(step_s)) return fail("the reporting step must be positive (--step S, e.g. --step 60)");
+  const double n_steps = duration_s / dt_s;
+  if (n_steps < 1.0 - 1e-9) return fail("the duration is shorter than one propagation step --dt; shorten --dt");
+  if (std::abs(n_steps - std::round(n_steps)) > 1e-6 * std::max(1.0, n_steps)) {
+    return fail("the duration must be a whole number of propagation steps --dt (e.g. --dt 1 with whole seconds)");
+  }
+  const double per_report = step_s / dt_s;
+  if (std::abs(per_report - std::round(per_report)) > 1e-6 * std::max(1.0, per_report) || per_report < 0.5) {
+    return fail("the reporting step --step must be a whole multiple of --dt");
+  }
+  if (n_steps > 1e8) return fail("more than 1e8 propagation steps: use a larger --dt or a shorter duration");
+  if (!std::isfinite(latitude_rad) || std::abs(latitude_rad) > std::numbers::pi / 2 * (1 + 1e-15)) {
+    return fail("the latitude must lie within [-90, 90] deg (--latitude DEG)");
+  }
+  if (!std::isfinite(velocity_m_s) || velocity_m_s < 0.0) return fail("the velocity must be >= 0 m/s (--velocity)");
+  if (models.empty()) return fail("no model asked (--model paper,schuler,covariance,montecarlo)");
+  for (Model m : models) {
+    if (m == Model::montecarlo && runs < 2) return fail("Monte Carlo needs at least 2 runs (--runs N)");
+  }
+  if (paper_sigma_eps_rad_s && (!(*paper_sigma_eps_rad_s >= 0.0) || !std::isfinite(*paper_sigma_eps_rad_s))) {
+    return fail("--sigma-eps must be >= 0");
+  }
+  if (!(earth.radius_m > 0.0) || !(earth.gravity_m_s2 > 0.0) || !(earth.rotation_rad_s >= 0.0)) {
+    return fail("the Earth model needs R > 0, g > 0 and a rotation rate >= 0");
+  }
+  for (std::size_t a = 0; a < 3; ++a) {
+    const GyroTerms t = terms_of(axes[a]);
+    const char* axis = a == 0 ? "x (north)" : a == 1 ? "y (east)" : "z (down)";
+    for (double v : {t.q_rad, t.n_rad_sqrt_s, t.b_rad_s, t.k_rad_s_sqrt_s, t.r_rad_s2, t.gm_sigma_rad_s, t.bias_rad_s}) {
+      if (!std::isfinite(v)) return fail(std::string("a noise coefficient of axis ") + axis + " is not finite");
+    }
+    if (t.gm_sigma_rad_s > 0.0 && !(t.gm_time_s > 0.0 && std::isfinite(t.gm_time_s))) {
+      return fail(std::string("axis ") + axis + ": a Gauss-Markov term needs a positive correlation time");
+    }
+  }
+  return true;
+}
+
+std::vector<double> report_times(const NavOptions& o) {
+  const long total = std::lround(o.duration_s / o.dt_s);
+  const long every = std::max(1L, std::lround(o.step_s / o.dt_s));
+  std::vector<double> t;
+  for (long k = 0; k <= total; k += every) t.push_back(static_cast<double>(k) * o.dt_s);
+  if (total % every != 0) t.push_back(static_cast<double>(total) * o.dt_s);
+  return t;
+}
+
+NavResult navigation_error(const NavOptions& options) {
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError(why);
+  NavResult r;
+  r.options = options;
+  for (std::size_t a = 0; a < 3; ++a) r.terms[a] = terms_of(options.axes[a]);
+
+  // Which terms are absent, per axis; said once for all axes when all lack it.
+  const char* names[] = {"Q", "N", "B", "K", "R", "GM", "bias"};
+  const char* axis_names[] = {"x", "y", "z"};
+  bool any = false;
+  for (int j = 0; j < 7; ++j) {
+    std::vector<std::string> missing;
+    for (std::size_t a = 0; a < 3; ++a) {
+      const GyroTerms& t = r.terms[a];
+      const double v[] = {t.q_rad, t.n_rad_sqrt_s, t.b_rad_s, t.k_rad_s_sqrt_s, t.r_rad_s2, t.gm_sigma_rad_s, t.bias_rad_s};
+      if (v[j] == 0.0) {
+        missing.emplace_back(axis_names[a]);
+      } else {
+        any = true;
+      }
+    }
+    if (missing.size() == 3) {
+      r.absent_terms.push_back(std::string(names[j]) + " (all axes)");
+    } else if (!missing.empty()) {
+      std::string list;
+      for (const auto& m : missing) list += (list.empty() ? "" : ",") + m;
+      r.absent_terms.push_back(std::string(names[j]) + " (" + list + ")");
+    }
+  }
+  bool paper_only_with_eps = options.paper_sigma_eps_rad_s.has_value();
+  for (Model m : options.models) paper_only_with_eps = paper_only_with_eps && m == Model::paper;
+  if (!any && !paper_only_with_eps) {
+    throw InputError("no noise term at all: give at least one of --N --B --K --Q --R --bias (or --from FIT.json "
+                     "with an identified term)");
+  }
+  if (!r.absent_terms.empty()) {
+    std::string list;
+    for (const auto& a : r.absent_terms) list += (list.empty() ? "" : ", ") + a;
+    r.notes.push_back("absent terms (not given or not identified; computed without them): " + list);
+  }
+  if (std::abs(std::cos(options.latitude_rad)) < 1e-12) {
+    r.longitude_defined = false;
+    r.notes.push_back("longitude is undefined at the pole (latitude +-90 deg): longitude is not reported; "
+                      "path, north, east and radial errors are");
+  }
+  for (Model m : options.models) {
+    if (m == Model::paper && !options.paper_sigma_eps_rad_s && r.terms[1].n_rad_sqrt_s == 0.0) {
+      throw InputError("the paper model takes sigma_eps from N (its reading of eq. 6), and N is absent: give "
+                       "--N or --sigma-eps DEG_PER_S");
+    }
+  }
+  r.t_s = report_times(options);
+  for (Model m : options.models) {
+    switch (m) {
+      case Model::paper: r.models.push_back(paper_series(options, r.terms, r.t_s)); break;
+      case Model::schuler: r.models.push_back(schuler_series(options, r.terms, r.t_s)); break;
+      case Model::covariance: r.models.push_back(covariance_series(options, r.terms, r.t_s)); break;
+      case Model::montecarlo: r.models.push_back(montecarlo_series(options, r.terms, r.t_s)); break;
+    }
+  }
+  return r;
+}
+
+}  // namespace imunoise::nav

@@ -1,0 +1,335 @@
+#include "imunoise/nav/report.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "imunoise/error.hpp"
+#include "imunoise/nav/paper.hpp"
+#include "imunoise/nav/schuler.hpp"
+#include "imunoise/units.hpp"
+
+namespace imunoise::nav {
+namespace {
+
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json scaled(const std::vector<double>& v, double factor) {
+  nlohmann::json a = nlohmann::json::array();
+  for (double x : v) a.push_back(number(x * factor));
+  return a;
+}
+
+nlohmann::json axis_json(const GyroTerms& t, int a) {
+  const char* names[] = {"x", "y", "z"};
+  const char* dirs[] = {"north", "east", "down"};
+  return {{"axis", names[a]},
+          {"direction", dirs[a]},
+          {"Q_deg", t.q_rad * kDeg},
+          {"N_deg_sqrt_s", t.n_rad_sqrt_s * kDeg},
+          {"B_deg_s", t.b_rad_s * kDeg},
+          {"K_deg_s_sqrt_s", t.k_rad_s_sqrt_s * kDeg},
+          {"R_deg_s2", t.r_rad_s2 * kDeg},
+          {"gm_sigma_deg_s", t.gm_sigma_rad_s * kDeg},
+          {"gm_time_s", t.gm_time_s},
+          {"bias_deg_s", t.bias_rad_s * kDeg},
+          {"customary",
+           {{"Q_arcsec", t.q_rad / units::arcsec_to_rad},
+            {"N_deg_sqrt_h", t.n_rad_sqrt_s / units::deg_per_sqrt_h_to_rad_per_sqrt_s},
+            {"B_deg_h", t.b_rad_s / units::deg_per_h_to_rad_per_s},
+            {"K_deg_h_sqrt_h", t.k_rad_s_sqrt_s / units::deg_per_h_per_sqrt_h_to_rad_per_s_per_sqrt_s},
+            {"R_deg_h2", t.r_rad_s2 / units::deg_per_h2_to_rad_per_s2},
+            {"bias_deg_h", t.bias_rad_s / units::deg_per_h_to_rad_per_s}}}};
+}
+
+const nlohmann::json& field(const nlohmann::json& j, const char* name, const std::string& where,
+                            const std::string& source) {
+  if (!j.is_object() || !j.contains(name)) {
+    throw InputError(source + ": not an imunoise fit document: missing field '" + where + name +
+                     "'; make one with `imunoise fit FILE --rate HZ --units deg/s --format json -o FIT.json`");
+  }
+  return j.at(name);
+}
+
+// Standard errors of the Monte-Carlo latitude and longitude RMS (rad), from the path/east ones.
+double st_lat_se(const ModelSeries& s, std::size_t i) {
+  return s.north_m[i] > 0 ? s.montecarlo->se_rms_north_m[i] * s.lat_rad[i] / s.north_m[i] : 0.0;
+}
+double st_lon_se(const ModelSeries& s, std::size_t i, const NavOptions&) {
+  return s.east_m[i] > 0 && !s.lon_rad.empty() ? s.montecarlo->se_rms_east_m[i] * s.lon_rad[i] / s.east_m[i] : 0.0;
+}
+
+}  // namespace
+
+nlohmann::json report_json(const NavResult& r) {
+  const NavOptions& o = r.options;
+  const double w0 = schuler::frequency_rad_s(o.earth.gravity_m_s2, o.earth.radius_m);
+  nlohmann::json axes = nlohmann::json::array();
+  for (int a = 0; a < 3; ++a) axes.push_back(axis_json(r.terms[static_cast<std::size_t>(a)], a));
+  nlohmann::json models = nlohmann::json::array();
+  for (const ModelSeries& s : r.models) {
+    nlohmann::json m{{"model", model_name(s.model)},
+                     {"assumptions", s.assumptions},
+                     {"t_s", s.t_s},
+                     {"lat_deg", scaled(s.lat_rad, kDeg)},
+                     {"lon_deg", r.longitude_defined ? scaled(s.lon_rad, kDeg) : nlohmann::json(nullptr)},
+                     {"path_m", scaled(s.north_m, 1.0)},
+                     {"north_m", scaled(s.north_m, 1.0)},
+                     {"east_m", scaled(s.east_m, 1.0)},
+                     {"radial_m", scaled(s.radial_m, 1.0)}};
+    if (s.model == Model::paper) {
+      const PaperPublished p;
+      m["sigma_eps_deg_s"] = s.paper_sigma_eps_rad_s * kDeg;
+      m["published"] = {{"t_s", p.t_s}, {"lat_deg", p.lat_deg}, {"path_m", p.path_m}, {"lon_deg", p.lon_deg}};
+      m["sigma_eps_for_published_deg_s"] = {
+          {"lat", paper::sigma_eps_for_latitude(p.lat_deg / kDeg, p.t_s, w0) * kDeg},
+          {"path", paper::sigma_eps_for_path(p.path_m, p.t_s, w0, o.earth.radius_m) * kDeg},
+          {"lon", paper::sigma_eps_for_longitude(p.lon_deg / kDeg, p.t_s, w0) * kDeg}};
+    }
+    if (s.montecarlo) {
+      const MonteCarloStats& st = *s.montecarlo;
+      m["runs"] = st.runs;
+      m["seed"] = st.seed;
+      m["path_se_m"] = scaled(st.se_rms_north_m, 1.0);
+      m["east_se_m"] = scaled(st.se_rms_east_m, 1.0);
+      m["radial_se_m"] = scaled(st.se_rms_radial_m, 1.0);
+      m["path_mean_m"] = scaled(st.mean_north_m, 1.0);
+      m["path_mean_se_m"] = scaled(st.se_mean_north_m, 1.0);
+      m["east_mean_m"] = scaled(st.mean_east_m, 1.0);
+      m["east_mean_se_m"] = scaled(st.se_mean_east_m, 1.0);
+    }
+    if (s.covariance_check) {
+      m["check"] = {{"states", s.covariance_check->states},
+                    {"max_asymmetry", number(s.covariance_check->max_asymmetry)},
+                    {"min_eigenvalue_ratio", number(s.covariance_check->min_eigenvalue_ratio)}};
+    }
+    models.push_back(std::move(m));
+  }
+  nlohmann::json doc{{"latitude_deg", o.latitude_rad * kDeg},
+                     {"duration_s", o.duration_s},
+                     {"step_s", o.step_s},
+                     {"dt_s", o.dt_s},
+                     {"velocity_m_s", o.velocity_m_s},
+                     {"earth_rate", o.earth_rate},
+                     {"earth", {{"radius_m", o.earth.radius_m},
+                                {"gravity_m_s2", o.earth.gravity_m_s2},
+                                {"rotation_rad_s", o.earth.rotation_rad_s},
+                                {"schuler_frequency_rad_s", w0},
+                                {"schuler_period_min", 2 * std::numbers::pi / w0 / 60.0}}},
+                     {"axes", std::move(axes)},
+                     {"absent_terms", r.absent_terms},
+                     {"notes", r.notes},
+                     {"longitude_defined", r.longitude_defined},
+                     {"units", {{"t", "s"}, {"lat", "deg"}, {"lon", "deg"}, {"path", "m"}, {"radial", "m"}}},
+                     {"models", std::move(models)}};
+  if (o.velocity_m_s > 0.0) {
+    std::vector<double> d;
+    for (double t : r.t_s) d.push_back(o.velocity_m_s * t);
+    doc["distance_travelled_m"] = d;
+  }
+  return doc;
+}
+
+namespace {
+
+std::string num(double v, const char* format = "%.6g") {
+  if (!std::isfinite(v)) return "";
+  char b[64];
+  std::snprintf(b, sizeof b, format, v);
+  return b;
+}
+
+std::string pad(const std::string& s, std::size_t width) {
+  return s.size() >= width ? s : std::string(width - s.size(), ' ') + s;
+}
+
+}  // namespace
+
+std::string report_csv(const NavResult& r) {
+  std::string out = "# imunoise nav: RMS navigation error; t in s, lat/lon in deg, path/east/radial in m\n";
+  out += "t_s";
+  for (const ModelSeries& s : r.models) {
+    const std::string m = model_name(s.model);
+    out += "," + m + "_lat_deg," + m + "_lon_deg," + m + "_path_m," + m + "_east_m," + m + "_radial_m";
+    if (s.montecarlo) out += "," + m + "_path_se_m," + m + "_radial_se_m";
+  }
+  out += "\n";
+  for (std::size_t i = 0; i < r.t_s.size(); ++i) {
+    out += num(r.t_s[i], "%.10g");
+    for (const ModelSeries& s : r.models) {
+      auto cell = [&out](const std::string& text) {
+        out += ',';
+        out += text;
+      };
+      cell(num(s.lat_rad[i] * kDeg, "%.9g"));
+      cell(r.longitude_defined ? num(s.lon_rad[i] * kDeg, "%.9g") : std::string());
+      cell(num(s.north_m[i], "%.9g"));
+      cell(num(s.east_m[i], "%.9g"));
+      cell(num(s.radial_m[i], "%.9g"));
+      if (s.montecarlo) {
+        cell(num(s.montecarlo->se_rms_north_m[i], "%.4g"));
+        cell(num(s.montecarlo->se_rms_radial_m[i], "%.4g"));
+      }
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+std::string report_table(const NavResult& r) {
+  const NavOptions& o = r.options;
+  std::size_t i = r.t_s.size() - 1;
+  for (std::size_t k = 0; k < r.t_s.size(); ++k) {
+    if (std::abs(r.t_s[k] - 3600.0) < 1e-6) i = k;
+  }
+  const double t = r.t_s[i];
+  bool paper_asked = false;
+  for (const auto& s : r.models) paper_asked = paper_asked || s.model == Model::paper;
+  const bool published = paper_asked && std::abs(t - 3600.0) < 1e-6;
+  std::string out = "# imunoise nav: RMS navigation error at t = " + num(t) + " s (" + num(t / 3600.0) +
+                    " h), latitude " + num(o.latitude_rad * kDeg) + " deg, Earth rate " +
+                    (o.earth_rate ? "on" : "off") + "\n";
+  for (int a = 0; a < 3; ++a) {
+    const GyroTerms& g = r.terms[static_cast<std::size_t>(a)];
+    const char* names[] = {"x (north)", "y (east)", "z (down)"};
+    out += std::string("# gyro ") + names[a] + ": N " + num(g.n_rad_sqrt_s * kDeg) + " deg/sqrt(s), B " +
+           num(g.b_rad_s * kDeg) + " deg/s, K " + num(g.k_rad_s_sqrt_s * kDeg) + " deg/s/sqrt(s), Q " +
+           num(g.q_rad * kDeg) + " deg, R " + num(g.r_rad_s2 * kDeg) + " deg/s^2, bias " +
+           num(g.bias_rad_s * kDeg) + " deg/s";
+    if (g.gm_sigma_rad_s > 0) out += ", GM " + num(g.gm_sigma_rad_s * kDeg) + " deg/s, " + num(g.gm_time_s) + " s";
+    out += "\n";
+  }
+  for (const auto& n : r.notes) out += "# note: " + n + "\n";
+  constexpr std::size_t w = 22;
+  out += pad("quantity", 18);
+  for (const auto& s : r.models) out += pad(model_name(s.model), w);
+  if (published) out += pad("paper (published)", w);
+  out += "\n";
+  struct Row {
+    const char* name;
+    double scale;
+    int which;  // 0 lat, 1 lon, 2 path, 3 east, 4 radial
+  };
+  const Row rows[] = {{"latitude [deg]", kDeg, 0}, {"longitude [deg]", kDeg, 1}, {"path [km]", 1e-3, 2},
+                      {"east [km]", 1e-3, 3}, {"radial [km]", 1e-3, 4}};
+  const PaperPublished pub;
+  for (const Row& row : rows) {
+    if (row.which == 1 && !r.longitude_defined) {
+      out += pad(row.name, 18) + "  undefined at the pole\n";
+      continue;
+    }
+    out += pad(row.name, 18);
+    for (const auto& s : r.models) {
+      const std::vector<double>* v[] = {&s.lat_rad, &s.lon_rad, &s.north_m, &s.east_m, &s.radial_m};
+      std::string cell = num((*v[row.which])[i] * row.scale, "%.5g");
+      if (s.montecarlo && row.which >= 2) {
+        const auto& st = *s.montecarlo;
+        const double se = row.which == 2 ? st.se_rms_north_m[i] : row.which == 3 ? st.se_rms_east_m[i] : st.se_rms_radial_m[i];
+        cell += " +- " + num(se * row.scale, "%.2g");
+      } else if (s.montecarlo) {
+        const double se = row.which == 0 ? st_lat_se(s, i) : st_lon_se(s, i, o);
+        cell += " +- " + num(se * row.scale, "%.2g");
+      }
+      out += pad(cell, w);
+    }
+    if (published) {
+      const double p[] = {pub.lat_deg, pub.lon_deg, pub.path_m * 1e-3};
+      out += row.which <= 2 ? pad(num(p[row.which], "%.5g"), w) : pad("-", w);
+    }
+    out += "\n";
+  }
+  for (const auto& s : r.models) {
+    out += std::string("# ") + model_name(s.model) + ": " + s.assumptions + "\n";
+    if (s.model == Model::paper) out += "#   sigma_eps = " + num(s.paper_sigma_eps_rad_s * kDeg) + " deg/s\n";
+  }
+  if (o.velocity_m_s > 0.0 && t > 0.0) {
+    out += "# distance travelled at " + num(o.velocity_m_s) + " m/s: " + num(o.velocity_m_s * t * 1e-3) + " km\n";
+  }
+  return out;
+}
+
+GyroAxisNoise axis_from_fit_json(const nlohmann::json& doc, const std::string& source) {
+  if (!doc.is_object()) {
+    throw InputError(source + ": not an imunoise fit document (a JSON object with 'unit' and 'terms' is expected); "
+                     "make one with `imunoise fit FILE --rate HZ --units deg/s --format json -o FIT.json`");
+  }
+  const nlohmann::json& unit_field = field(doc, "unit", "", source);
+  if (!unit_field.is_string()) throw InputError(source + ": field 'unit' must be a string such as \"deg/s\"");
+  const std::string unit_name = unit_field.get<std::string>();
+  if (unit_name == "input unit") {
+    throw InputError(source + ": the fit was made without --units, so its coefficients have no angular unit; "
+                     "re-run `imunoise fit ... --units deg/s` (or the unit of the gyro)");
+  }
+  Unit unit;
+  try {
+    unit = parse_unit(unit_name);
+  } catch (const InputError& e) {
+    throw InputError(source + ": field 'unit': " + e.what());
+  }
+  if (unit.quantity != Quantity::angular_rate) {
+    throw InputError(source + ": the fit's unit '" + unit_name + "' is not an angular rate (" +
+                     std::string(quantity_name(unit.quantity)) +
+                     "): navigation error needs a gyro fit in deg/s, rad/s, deg/h, ...");
+  }
+  const nlohmann::json& terms = field(doc, "terms", "", source);
+  GyroAxisNoise axis;
+  NoiseCoefficients& c = axis.coefficients;
+  auto read = [&](const char* name, Coefficient& out) {
+    const nlohmann::json& t = field(terms, name, "terms.", source);
+    const nlohmann::json& value = field(t, "value", std::string("terms.") + name + ".", source);
+    const nlohmann::json& identified = field(t, "identified", std::string("terms.") + name + ".", source);
+    if (!identified.is_boolean()) {
+      throw InputError(source + ": field 'terms." + name + ".identified' must be true or false");
+    }
+    if (!value.is_null() && !value.is_number()) {
+      throw InputError(source + ": field 'terms." + name + ".value' must be a number");
+    }
+    out.identified = identified.get<bool>() && value.is_number();
+    out.value = out.identified ? value.get<double>() * unit.to_si : 0.0;
+    if (out.identified && !std::isfinite(out.value)) {
+      throw InputError(source + ": field 'terms." + name + ".value' is not finite");
+    }
+  };
+  read("Q", c.quantization);
+  read("N", c.random_walk);
+  read("B", c.bias_instability);
+  read("K", c.rate_random_walk);
+  read("R", c.rate_ramp);
+  if (terms.contains("GM") && terms["GM"].is_object() && terms["GM"].contains("sigma") &&
+      terms["GM"].contains("correlation_time_s")) {
+    const auto& gm = terms["GM"];
+    GaussMarkovTerm g;
+    const auto& s = gm["sigma"];
+    const auto& tc = gm["correlation_time_s"];
+    if (s.value("identified", false) && tc.value("identified", false) && s["value"].is_number() &&
+        tc["value"].is_number()) {
+      g.sigma.value = s["value"].get<double>() * unit.to_si;
+      g.sigma.identified = true;
+      g.correlation_time_s.value = tc["value"].get<double>();
+      g.correlation_time_s.identified = true;
+      c.gauss_markov = g;
+    }
+  }
+  return axis;
+}
+
+GyroAxisNoise axis_from_fit_file(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path + ": cannot open the fit file; check the path");
+  std::stringstream text;
+  text << in.rdbuf();
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(text.str());
+  } catch (const nlohmann::json::parse_error& e) {
+    throw InputError(path + ": not JSON (" + std::string(e.what()) +
+                     "); give the output of `imunoise fit ... --format json -o FIT.json`");
+  }
+  return axis_from_fit_json(doc, path);
+}
+
+}  // namespace imunoise::nav

@@ -1,0 +1,151 @@
+#include "imunoise/nav/schuler.hpp"
+
+#include <cmath>
+#include <complex>
+
+namespace imunoise::nav::schuler {
+namespace {
+
+// Below this w0 t the closed forms lose more than ~1e-12 to cancellation: use power series.
+constexpr double kSeriesBelow = 1.0;
+constexpr int kSeriesTerms = 14;  // x < 1: the next term is below 1e-30 relative
+
+// x - sin x = sum_{k>=1} (-1)^(k+1) x^(2k+1) / (2k+1)!
+double x_minus_sin(double x) {
+  if (std::abs(x) >= kSeriesBelow) return x - std::sin(x);
+  double term = x * x * x / 6.0, sum = 0.0;
+  for (int k = 1; k <= kSeriesTerms; ++k) {
+    sum += term;
+    term *= -x * x / ((2.0 * k + 2.0) * (2.0 * k + 3.0));
+  }
+  return sum;
+}
+
+// x^2/2 - (1 - cos x) = sum_{k>=2} (-1)^k x^(2k) / (2k)!
+double half_x2_minus_one_minus_cos(double x) {
+  if (std::abs(x) >= kSeriesBelow) return 0.5 * x * x - (1.0 - std::cos(x));
+  double term = x * x * x * x / 24.0, sum = 0.0;
+  for (int k = 2; k <= kSeriesTerms; ++k) {
+    sum += term;
+    term *= -x * x / ((2.0 * k + 1.0) * (2.0 * k + 2.0));
+  }
+  return sum;
+}
+
+// int_0^x (1 - cos y)^2 dy = 1.5 x - 2 sin x + sin(2x)/4; series from the product of
+// 1 - cos y = sum_{k>=1} b_k y^(2k), b_k = (-1)^(k+1)/(2k)!.
+double integral_one_minus_cos_squared(double x) {
+  if (x >= kSeriesBelow) return 1.5 * x - 2.0 * std::sin(x) + 0.25 * std::sin(2.0 * x);
+  double b[kSeriesTerms + 1];
+  double f = 1.0;  // (2k)!
+  for (int k = 1; k <= kSeriesTerms; ++k) {
+    f *= (2.0 * k - 1.0) * (2.0 * k);
+    b[k] = ((k % 2) ? 1.0 : -1.0) / f;
+  }
+  double sum = 0.0;
+  for (int j = kSeriesTerms; j >= 1; --j) {
+    for (int k = kSeriesTerms; k >= 1; --k) {
+      const int p = 2 * j + 2 * k + 1;
+      sum += b[j] * b[k] * std::pow(x, p) / p;
+    }
+  }
+  return sum;
+}
+
+// int_0^x (y - sin y)^2 dy = x^3/3 - 2 (sin x - x cos x) + x/2 - sin(2x)/4; series from
+// y - sin y = sum_{k>=1} a_k y^(2k+1), a_k = (-1)^(k+1)/(2k+1)!.
+double integral_x_minus_sin_squared(double x) {
+  if (x >= kSeriesBelow) {
+    return x * x * x / 3.0 - 2.0 * (std::sin(x) - x * std::cos(x)) + 0.5 * x - 0.25 * std::sin(2.0 * x);
+  }
+  double a[kSeriesTerms + 1];
+  double f = 1.0;  // (2k+1)!
+  for (int k = 1; k <= kSeriesTerms; ++k) {
+    f *= (2.0 * k) * (2.0 * k + 1.0);
+    a[k] = ((k % 2) ? 1.0 : -1.0) / f;
+  }
+  double sum = 0.0;
+  for (int j = kSeriesTerms; j >= 1; --j) {
+    for (int k = kSeriesTerms; k >= 1; --k) {
+      const int p = 2 * j + 2 * k + 3;
+      sum += a[j] * a[k] * std::pow(x, p) / p;
+    }
+  }
+  return sum;
+}
+
+using cplx = std::complex<double>;
+
+// E(z) = int_0^t e^{z a} da = (e^{z t} - 1) / z, with its limit t at z = 0.
+cplx integral_exp(cplx z, double t) {
+  const cplx zt = z * t;
+  if (std::abs(zt) < 1e-5) return t * (1.0 + zt / 2.0 + zt * zt / 6.0);
+  return (std::exp(zt) - 1.0) / z;
+}
+
+// I(l, m) = int_0^t int_0^t e^{l a} e^{m b} e^{-|a-b|/T} db da, c = 1/T, m != +-c.
+cplx double_integral(cplx l, cplx m, double c, double t) {
+  const cplx e_lm = integral_exp(l + m, t);
+  const cplx first = (e_lm - integral_exp(l - c, t)) / (m + c);
+  const cplx second = ((std::exp((l + m) * t) - std::exp((m - c) * t)) / (l + c) - e_lm) / (m - c);
+  return first + second;
+}
+
+}  // namespace
+
+double frequency_rad_s(double gravity_m_s2, double radius_m) { return std::sqrt(gravity_m_s2 / radius_m); }
+
+double constant_drift_rad(double bias_rad_s, double t_s, double w0) {
+  return std::abs(bias_rad_s) * x_minus_sin(w0 * t_s) / w0;
+}
+
+double constant_drift_tilt_rad(double bias_rad_s, double t_s, double w0) {
+  return std::abs(bias_rad_s * std::sin(w0 * t_s) / w0);
+}
+
+double rate_ramp_rad(double ramp_rad_s2, double t_s, double w0) {
+  return std::abs(ramp_rad_s2) * half_x2_minus_one_minus_cos(w0 * t_s) / (w0 * w0);
+}
+
+double white_rad(double n, double t_s, double w0) {
+  return n * std::sqrt(integral_one_minus_cos_squared(w0 * t_s) / w0);
+}
+
+double random_walk_rad(double k, double t_s, double w0) {
+  return k * std::sqrt(integral_x_minus_sin_squared(w0 * t_s) / (w0 * w0 * w0));
+}
+
+double gauss_markov_rad(double sigma, double time_s, double t_s, double w0) {
+  if (sigma == 0.0 || t_s <= 0.0) return 0.0;
+  // h(u) = -1 + e^{i w0 u}/2 + e^{-i w0 u}/2
+  const cplx lambda[3] = {cplx(0.0, 0.0), cplx(0.0, w0), cplx(0.0, -w0)};
+  const double coef[3] = {-1.0, 0.5, 0.5};
+  const double c = 1.0 / time_s;
+  cplx sum = 0.0;
+  for (int j = 0; j < 3; ++j) {
+    for (int k = 0; k < 3; ++k) sum += coef[j] * coef[k] * double_integral(lambda[j], lambda[k], c, t_s);
+  }
+  const double var = sigma * sigma * sum.real();
+  return var > 0.0 ? std::sqrt(var) : 0.0;
+}
+
+double quantization_rad(double q, double h, double t_s, double w0) {
+  if (q == 0.0) return 0.0;
+  const long k = std::lround(t_s / h);
+  if (k <= 0) return 0.0;
+  const double xh = w0 * h;
+  // A_m = int_{(m-1)h}^{mh} (1 - cos w0 u) du = (s(w0 m h) - s(w0 (m-1) h)) / w0, s(x) = x - sin x
+  const double a1 = x_minus_sin(xh) / w0;
+  const double ak = (x_minus_sin(xh * static_cast<double>(k)) - x_minus_sin(xh * static_cast<double>(k - 1))) / w0;
+  const double s_half = std::sin(0.5 * xh);
+  const double gain = 4.0 * s_half * s_half / w0;
+  double sum = 0.0;
+  for (long m = 1; m < k; ++m) {
+    const double s = std::sin(xh * static_cast<double>(m));
+    sum += s * s;
+  }
+  const double var = (q / h) * (q / h) * (a1 * a1 + ak * ak + gain * gain * sum);
+  return std::sqrt(var);
+}
+
+}  // namespace imunoise::nav::schuler
