@@ -72,6 +72,117 @@ void set_ranges(nlohmann::json& figure) {
   figure["y_range"] = {y_lo / 2.0, y_hi * 1.6};
 }
 
+
+// Navigation error growth of the first gyro with a navigation result, one figure per
+// quantity (the paper's Figures 5-7), one line per model, the paper's published 1-hour value
+// as a point.
+void nav_figures(const nlohmann::json& doc, nlohmann::json& figures) {
+  const nlohmann::json* nav = nullptr;
+  std::string name;
+  for (const auto& ch : doc["channels"]) {
+    if (ch.contains("nav") && !ch["nav"].is_null()) {
+      nav = &ch["nav"];
+      name = ch["name"].get<std::string>();
+      break;
+    }
+  }
+  if (nav == nullptr) return;
+  struct Quantity { const char* id; const char* key; const char* title; const char* y_label; double scale; const char* published; };
+  const Quantity quantities[] = {
+      {"nav_latitude", "lat_deg", "Latitude error", "latitude error [deg]", 1.0, "lat_deg"},
+      {"nav_path", "path_m", "Position error along the path", "path error [km]", 1e-3, "path_m"},
+      {"nav_longitude", "lon_deg", "Longitude error", "longitude error [deg]", 1.0, "lon_deg"}};
+  for (const auto& q : quantities) {
+    nlohmann::json series = nlohmann::json::array();
+    int color = 0;
+    for (const auto& m : (*nav)["models"]) {
+      if (!m.contains(q.key) || m[q.key].is_null()) continue;
+      nlohmann::json x = nlohmann::json::array(), y = nlohmann::json::array();
+      for (std::size_t i = 0; i < m["t_s"].size(); ++i) {
+        if (!m[q.key][i].is_number()) continue;
+        x.push_back(m["t_s"][i].get<double>() / 60.0);
+        y.push_back(m[q.key][i].get<double>() * q.scale);
+      }
+      // Models that agree would hide each other: the later ones are dashed.
+      series.push_back({{"name", m["model"]}, {"style", color == 0 ? "line" : "dashed"}, {"color", color++},
+                        {"x", std::move(x)}, {"y", std::move(y)}});
+      if (m.contains("published") && m["published"].is_object() &&
+          m["published"].contains(q.published) && m["published"][q.published].is_number()) {
+        const double t = m["published"].value("t_s", 3600.0) / 60.0;
+        series.push_back({{"name", "paper, published"}, {"style", "points"}, {"color", 6},
+                          {"x", {t}}, {"y", {m["published"][q.published].get<double>() * q.scale}}});
+      }
+    }
+    if (series.empty()) continue;
+    figures.push_back({{"id", q.id},
+                       {"title", std::string(q.title) + " from the noise of " + name},
+                       {"caption", "RMS error of a free-inertial system whose gyros all have the "
+                                   "noise model fitted to " + name + ", per navigation model "
+                                   "(paper: the published eq. 6; schuler: Schuler-loop closed "
+                                   "forms; covariance: the linearised error model with Earth "
+                                   "rate). Black point: the paper's published 1-hour value."},
+                       {"x_label", "time [min]"},
+                       {"y_label", q.y_label},
+                       {"x_log", false},
+                       {"y_log", false},
+                       {"series", std::move(series)}});
+  }
+}
+
+// Allan variance of eq. 5 from a {Q, N, B, K, R} block of values in one unit.
+double model_adev(const nlohmann::json& terms, double tau) {
+  auto v = [&](const char* k) {
+    return terms.contains(k) && terms[k].contains("value") && terms[k]["value"].is_number()
+               ? terms[k]["value"].get<double>() : 0.0;
+  };
+  const double q = v("Q"), n = v("N"), b = v("B"), k = v("K"), r = v("R");
+  return std::sqrt(3 * q * q / (tau * tau) + n * n / tau + 2 * std::log(2.0) / M_PI * b * b +
+                   k * k * tau / 3 + r * r * tau * tau / 2);
+}
+
+// The fused body axes of a redundant unit: measured curves of the fused samples, the model the
+// redundant analysis predicts from the sensors' fits, and one sensor for comparison.
+void fused_figure(const nlohmann::json& doc, nlohmann::json& figures) {
+  const auto& red = doc["redundant"];
+  if (red.is_null() || !red.contains("fused_curves")) return;
+  nlohmann::json series = nlohmann::json::array();
+  int color = 0;
+  std::string unit;
+  for (const auto& c : red["fused_curves"]) {
+    unit = c["unit"].get<std::string>();
+    series.push_back(curve_series(c, c["estimator"].get<std::string>(), color));
+    series.back()["group"] = c["estimator"];
+    if (red.contains("axes") && static_cast<std::size_t>(color) < red["axes"].size()) {
+      nlohmann::json x = nlohmann::json::array(), y = nlohmann::json::array();
+      for (const auto& p : c["points"]) {
+        x.push_back(p["tau_s"]);
+        y.push_back(model_adev(red["axes"][static_cast<std::size_t>(color)], p["tau_s"].get<double>()));
+      }
+      series.push_back({{"name", c["estimator"].get<std::string>() + " predicted"},
+                        {"group", c["estimator"]}, {"style", "line"}, {"color", color},
+                        {"x", std::move(x)}, {"y", std::move(y)}});
+    }
+    ++color;
+  }
+  const auto& first = doc["channels"][0];
+  if (first.contains("model") && !first["model"].is_null()) {
+    series.push_back({{"name", "one sensor (" + first["name"].get<std::string>() + ") model"},
+                      {"style", "dashed"}, {"color", 6},
+                      {"x", first["model"]["tau_s"]}, {"y", first["model"]["adev"]}});
+  }
+  figures.push_back(
+      {{"id", "adev_fused"},
+       {"title", "Fused body axes of the redundant unit (" + red["geometry"].get<std::string>() + ")"},
+       {"caption", "Points: overlapping Allan deviation of the fused axes x, y, z (the weighted "
+                   "least-squares fusion applied to the samples) with " + ci_text(doc) +
+                   " confidence bars; solid: the fused noise predicted from the sensors' fits; "
+                   "dashed: one sensor's fitted model."},
+       {"x_label", "averaging time tau [s]"},
+       {"y_label", "Allan deviation [" + unit + "]"},
+       {"x_log", true},
+       {"y_log", true},
+       {"series", std::move(series)}});
+}
 }  // namespace
 
 const char* palette_color(int index) {
@@ -198,7 +309,11 @@ nlohmann::json build_figures(const nlohmann::json& doc) {
     }
     ++color;
   }
-  for (auto& f : figures) set_ranges(f);
+  fused_figure(doc, figures);
+  nav_figures(doc, figures);
+  for (auto& f : figures) {
+    if (f["x_log"].get<bool>()) set_ranges(f);
+  }
   return figures;
 }
 

@@ -10,6 +10,10 @@
 
 #include "imunoise/error.hpp"
 #include "imunoise/fit/report.hpp"
+#include "imunoise/nav/navigation.hpp"
+#include "imunoise/nav/report.hpp"
+#include "imunoise/redundant/analysis.hpp"
+#include "imunoise/redundant/report.hpp"
 #include "imunoise/spec/exports.hpp"
 #include "imunoise/spec/report.hpp"
 #include "imunoise/study/figures.hpp"
@@ -207,6 +211,74 @@ nlohmann::json kalibr_json(const Study& study) {
           {"text", text}};
 }
 
+
+nav::NavOptions nav_options(const StudyOptions& options, const NoiseCoefficients& c) {
+  nav::NavOptions o;
+  for (auto& axis : o.axes) axis.coefficients = c;  // the same gyro on every axis (eq. 6)
+  o.duration_s = options.nav_hours * 3600.0;
+  o.step_s = o.duration_s >= 600.0 ? 60.0 : o.duration_s / 10.0;
+  o.dt_s = o.step_s >= 1.0 ? 1.0 : o.step_s;
+  o.latitude_rad = options.nav_latitude_deg * std::numbers::pi / 180.0;
+  o.models = nav::parse_models(options.nav_models);
+  return o;
+}
+
+// The redundant unit: the channels are its sensors, in order. The analysis (fusion matrix,
+// fused axes' noise predicted from the sensors' fits, parity, detection design) comes from the
+// redundant module; the fused axes' curves are measured here by applying the fusion matrix to
+// the samples (fusion is linear, so fusing the angles fuses the rates).
+void study_redundant(Study& study, const CurveOptions& curve_options) {
+  const auto geometry = redundant::make_geometry(study.options.geometry);
+  std::vector<redundant::SensorModel> sensors;
+  std::vector<const ChannelStudy*> used;
+  for (const auto& ch : study.channels) {
+    if (!ch.fit || ch.fit->coefficients.quantity != Quantity::angular_rate) continue;
+    sensors.push_back({ch.record.name, ch.fit->coefficients});
+    used.push_back(&ch);
+  }
+  if (sensors.size() != geometry.size()) {
+    study.notes.push_back(fmt::format(
+        "redundant unit ({}): it has {} sensors but {} gyro channels were fitted; no fusion "
+        "(give one channel per sensor, in the geometry's order)",
+        geometry.name, geometry.size(), sensors.size()));
+    return;
+  }
+  const auto analysis = redundant::analyze_unit(geometry, sensors);
+  study.redundant = redundant::report_json(analysis, used.front()->record.rate_unit);
+  Record fused;
+  fused.rate_hz = used.front()->record.rate_hz;
+  fused.rate_unit = used.front()->record.rate_unit;
+  fused.unit_given = true;
+  const std::size_t n = used.front()->record.phase_si.size();
+  for (const auto* ch : used) {
+    if (ch->record.phase_si.size() != n) {
+      study.notes.push_back("redundant unit: the channels differ in length; fused axes not measured");
+      return;
+    }
+  }
+  fused.n_samples = used.front()->record.n_samples;
+  CurveOptions co = curve_options;
+  co.estimators = {Estimator::oadev};
+  const char* names[3] = {"x", "y", "z"};
+  for (std::size_t axis = 0; axis < 3; ++axis) {
+    fused.name = std::string("fused ") + names[axis];
+    fused.source = "fusion of " + std::to_string(used.size()) + " gyros (" + geometry.name + ")";
+    fused.phase_si.assign(n, 0.0);
+    for (std::size_t i = 0; i < used.size(); ++i) {
+      const double g = analysis.fusion(axis, i);
+      const auto& phase = used[i]->record.phase_si;
+      for (std::size_t k = 0; k < n; ++k) fused.phase_si[k] += g * phase[k];
+    }
+    auto curves = compute_curves(fused, co);
+    curves.front().label = fused.name;
+    study.fused_curves.push_back(std::move(curves.front()));
+  }
+  fused.phase_si.clear();
+  fused.phase_si.shrink_to_fit();
+  fused.name = "fused";
+  study.fused_record = std::move(fused);
+}
+
 }  // namespace
 
 std::string_view version() { return "0.1.0"; }
@@ -287,18 +359,30 @@ Study run_study(std::vector<Record> records, const StudyOptions& options,
       if (!options.keep_going) throw;
       ch.error = e.what();
     }
-    ch.record.phase_si.clear();
-    ch.record.phase_si.shrink_to_fit();
+    if (ch.fit && ch.fit->coefficients.quantity == Quantity::angular_rate && ch.record.unit_given) {
+      report("navigation error", 0.8);
+      try {
+        ch.nav = nav::report_json(nav::navigation_error(nav_options(options, ch.fit->coefficients)));
+      } catch (const InputError& e) {
+        ch.warnings.push_back(std::string("navigation error not computed: ") + e.what());
+      }
+    }
+    // The samples are kept only when the redundant unit's axes are fused from them.
+    if (options.geometry.empty()) {
+      ch.record.phase_si.clear();
+      ch.record.phase_si.shrink_to_fit();
+    }
     study.channels.push_back(std::move(ch));
   }
-  if (progress) progress("done", 1.0);
-  study.notes.push_back(
-      "navigation error: the navigation module is not part of this build; the report has no "
-      "navigation curves");
   if (!options.geometry.empty()) {
-    study.notes.push_back("redundant unit (" + options.geometry +
-                          "): the redundant-unit module is not part of this build; no fused axes");
+    if (progress) progress("redundant unit: fusion and fault detection", 0.95);
+    study_redundant(study, curve_options);
   }
+  for (auto& ch : study.channels) {
+    ch.record.phase_si.clear();
+    ch.record.phase_si.shrink_to_fit();
+  }
+  if (progress) progress("done", 1.0);
   return study;
 }
 
@@ -323,6 +407,8 @@ nlohmann::json study_json(const Study& study) {
                     {"curve_ci_level", o.curves.ci_level},
                     {"spec", o.spec ? nlohmann::json(o.spec->name) : nlohmann::json(nullptr)},
                     {"nav_hours", o.nav_hours},
+                    {"nav_latitude_deg", o.nav_latitude_deg},
+                    {"nav_models", o.nav_models},
                     {"geometry", o.geometry.empty() ? nlohmann::json(nullptr) : nlohmann::json(o.geometry)}};
   nlohmann::json channels = nlohmann::json::array();
   for (const auto& ch : study.channels) {
@@ -357,6 +443,9 @@ nlohmann::json study_json(const Study& study) {
   }
   doc["channels"] = std::move(channels);
   doc["redundant"] = study.redundant;
+  if (!study.redundant.is_null() && !study.fused_curves.empty()) {
+    doc["redundant"]["fused_curves"] = curves_json(study.fused_record, study.fused_curves);
+  }
   doc["kalibr"] = kalibr_json(study);
   doc["notes"] = study.notes;
   doc["figures"] = build_figures(doc);

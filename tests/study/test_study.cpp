@@ -12,6 +12,8 @@
 
 #include "imunoise/error.hpp"
 #include "imunoise/fit/report.hpp"
+#include "imunoise/nav/report.hpp"
+#include "imunoise/redundant/report.hpp"
 #include "imunoise/spec/report.hpp"
 #include "imunoise/study/fit_stage.hpp"
 #include "imunoise/study/render.hpp"
@@ -96,19 +98,66 @@ TEST(Study, DocumentHoldsTheLibrarysNumbers) {
       EXPECT_NE(t["label"].get<std::string>().find("deg/sqrt(h)"), std::string::npos);
     }
     EXPECT_TRUE(found);
+    // Navigation: the nav module's document for this fit on all three axes.
+    nav::NavOptions no;
+    for (auto& axis : no.axes) axis.coefficients = fit.coefficients;
+    no.duration_s = 3600.0;
+    no.step_s = 60.0;
+    no.dt_s = 1.0;
+    no.latitude_rad = 58.5 * M_PI / 180.0;
+    no.models = nav::parse_models("paper,schuler,covariance");
+    EXPECT_EQ(ch["nav"], nav::report_json(nav::navigation_error(no)));
   }
+}
+
+TEST(Study, RedundantUnitIsTheModulesAnalysisAndItsFusedAxesMatchIt) {
+  std::vector<study::Record> records;
+  for (int i = 0; i < 4; ++i) {
+    records.push_back(simulated_gyro("g" + std::to_string(i + 1), 8.8e-4, 1e-5, 100.0, 1800.0,
+                                     static_cast<std::uint64_t>(31 + i)));
+  }
+  auto copy = records;
+  study::StudyOptions o;
+  o.geometry = "tetra";
+  const auto result = study::run_study(std::move(records), o);
+  const auto doc = study::study_json(result);
+  std::vector<redundant::SensorModel> sensors;
+  for (const auto& ch : result.channels) sensors.push_back({ch.record.name, ch.fit->coefficients});
+  auto expected = redundant::report_json(
+      redundant::analyze_unit(redundant::make_geometry("tetra"), sensors), parse_unit("deg/s"));
+  auto actual = doc["redundant"];
+  ASSERT_TRUE(actual.contains("fused_curves"));
+  actual.erase("fused_curves");
+  EXPECT_EQ(actual, expected);
+  // The fused axes measured from the samples: at tau ~ 1 s (white noise, thousands of degrees
+  // of freedom: the bars are ~2 %) each axis agrees with the fused noise the module predicts,
+  // 0.866 N / sqrt(tau) on the tetrahedron, within 4 bars.
+  for (const auto& curve : doc["redundant"]["fused_curves"]) {
+    for (const auto& p : curve["points"]) {
+      if (std::abs(p["tau_s"].get<double>() - 1.28) > 0.01) continue;
+      const double predicted = 0.8660 * 8.8e-4 / std::sqrt(p["tau_s"].get<double>());
+      const double half_bar = 0.5 * (p["ci_high"].get<double>() - p["ci_low"].get<double>());
+      EXPECT_NEAR(p["dev"].get<double>(), predicted, 4 * half_bar) << curve["estimator"];
+    }
+  }
+  EXPECT_EQ(doc["figures"][doc["figures"].size() - 4]["id"], "adev_fused");
 }
 
 TEST(Study, FiguresCarryDataAndUnits) {
   const auto doc = study::study_json(study::run_study(two_gyros(), options_with_spec()));
   const auto& figures = doc["figures"];
-  ASSERT_EQ(figures.size(), 3u);  // both gyros overlaid, then one per gyro
-  EXPECT_EQ(figures[0]["id"], "adev_all_gyros");
+  // Both gyros overlaid, one per gyro, then the navigation error of the first (Figures 5-7).
+  std::vector<std::string> ids;
+  for (const auto& f : figures) ids.push_back(f["id"]);
+  EXPECT_EQ(ids, (std::vector<std::string>{"adev_all_gyros", "adev_gx", "adev_gy", "nav_latitude",
+                                           "nav_path", "nav_longitude"}));
   for (const auto& f : figures) {
-    EXPECT_NE(f["y_label"].get<std::string>().find("[deg/s]"), std::string::npos);
-    EXPECT_NE(f["x_label"].get<std::string>().find("[s]"), std::string::npos);
+    const bool adev = f["id"].get<std::string>().rfind("adev", 0) == 0;
+    EXPECT_NE(f["y_label"].get<std::string>().find(adev ? "[deg/s]" : "["), std::string::npos);
+    EXPECT_NE(f["x_label"].get<std::string>().find(adev ? "[s]" : "[min]"), std::string::npos);
     for (const auto& s : f["series"]) {
-      EXPECT_GT(s["x"].size(), 2u) << f["id"] << " " << s["name"];
+      // Every curve has many points; the paper's published 1-hour value is one point.
+      EXPECT_GE(s["x"].size(), s["name"] == "paper, published" ? 1u : 3u) << f["id"] << " " << s["name"];
       EXPECT_EQ(s["x"].size(), s["y"].size());
     }
   }

@@ -33,7 +33,11 @@ struct StudyOptions {
   TauGrid fit_grid;                ///< tau grid of the fitted oadev curve (octave)
   std::optional<Spec> spec;        ///< datasheet to compare with
   double nav_hours = 1.0;          ///< duration of the navigation-error curves (h)
-  std::string geometry;            ///< redundant-unit geometry name or file ("": none)
+  double nav_latitude_deg = 58.5;  ///< latitude of the navigation model (the paper's site)
+  /// Navigation models (nav/navigation.hpp names): the paper's eq. 6, the Schuler closed forms
+  /// and the covariance propagation; montecarlo on request (slow).
+  std::string nav_models = "paper,schuler,covariance";
+  std::string geometry;            ///< redundant-unit geometry: tetra, 3+1, cone:N:DEG, file ("": none)
   bool keep_going = false;         ///< a failing channel is reported, the others finish
   double kalibr_inflation = 1.0;   ///< factor on the Kalibr values (> 0)
   std::string kalibr_topic = "/imu0";
@@ -63,7 +67,9 @@ struct Study {
   StudyOptions options;
   std::vector<ChannelStudy> channels;
   std::vector<FailedInput> failed_inputs;
-  nlohmann::json redundant;         ///< fused axes and detection (null: no geometry)
+  nlohmann::json redundant;         ///< the unit's analysis, redundant/report.hpp (null: no geometry)
+  std::vector<Curve> fused_curves;  ///< oadev of the fused body axes x, y, z (from the samples)
+  Record fused_record;              ///< rate and unit of the fused axes (no samples kept)
   std::vector<std::string> notes;   ///< study-level remarks (stages not available, ...)
 };
 
