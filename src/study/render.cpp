@@ -475,9 +475,11 @@ constexpr const char* kScript = R"JS(
     const annotations = [];
     fig.series.forEach(function (s) {
       if (!s.label) return;
+      // Labels right of the middle point left, so that they stay inside the frame.
+      const right = fig.x_range && s.label.x > Math.sqrt(fig.x_range[0] * fig.x_range[1]);
       annotations.push({ x: fig.x_log ? Math.log10(s.label.x) : s.label.x,
                          y: fig.y_log ? Math.log10(s.label.y) : s.label.y,
-                         text: s.label.text, showarrow: true, arrowhead: 0, ax: 28, ay: -26,
+                         text: s.label.text, showarrow: true, arrowhead: 0, ax: right ? -34 : 28, ay: -26,
                          font: { size: 12, color: PALETTE[s.color % PALETTE.length] },
                          bgcolor: 'rgba(255,255,255,0.85)' });
     });
