@@ -274,3 +274,29 @@ TEST(StudyWrite, UnwritableDirectoryIsAnInputError) {
 
 }  // namespace
 }  // namespace imunoise
+
+namespace imunoise {
+namespace {
+
+TEST(Study, KalibrFileCombinesTheAxesByTheStatedRule) {
+  auto records = two_gyros();
+  records.push_back(test::simulated_gyro("ax", 5e-4, 0.0, 100.0, 1800.0, 41, "g"));
+  const auto result = study::run_study(std::move(records), {});
+  const auto doc = study::study_json(result);
+  const auto& k = doc["kalibr"];
+  ASSERT_TRUE(k["written"].get<bool>());
+  EXPECT_TRUE(k["complete"].get<bool>());
+  EXPECT_EQ(k["gyro_axes"], (nlohmann::json{"gx", "gy"}));
+  EXPECT_EQ(k["accelerometer_axes"], (nlohmann::json{"ax"}));
+  // gyroscope_noise_density is the larger of the two gyros' N (rad/s/sqrt(Hz) = rad/sqrt(s)).
+  const double n = std::max(result.channels[0].fit->coefficients.random_walk.value,
+                            result.channels[1].fit->coefficients.random_walk.value);
+  const std::string text = k["text"];
+  const auto at = text.find("\ngyroscope_noise_density: ");
+  ASSERT_NE(at, std::string::npos) << text;
+  EXPECT_DOUBLE_EQ(std::stod(text.substr(at + 26)), n);
+  EXPECT_NE(text.find("\naccelerometer_noise_density: "), std::string::npos) << text;
+}
+
+}  // namespace
+}  // namespace imunoise
