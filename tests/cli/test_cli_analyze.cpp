@@ -117,3 +117,30 @@ TEST(CliAnalyze, UnusableDirectoryIsAnError) {
 
 }  // namespace
 }  // namespace imunoise::test
+
+namespace imunoise::test {
+namespace {
+
+// The demo on a short record (the 6-hour run is SlowDemo in tests/study): the summary on
+// stdout, the report in DIR, no progress when stderr is not a terminal, no overwrite.
+TEST(CliDemo, PrintsTheSummaryAndWritesTheReport) {
+  TempDir dir;
+  const auto out = dir.file("demo");
+  const auto r = run_cli({"demo", "--hours", "0.25", "-o", out});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* text : {"Table 2", "gyro1  N", "Datasheet comparison", "Navigation error after 1 h",
+                           "why they differ", "report: "}) {
+    EXPECT_NE(r.out.find(text), std::string::npos) << text << "\n" << r.out;
+  }
+  EXPECT_EQ(r.err.find("%]"), std::string::npos) << "progress on a non-terminal stderr: " << r.err;
+  const auto doc = nlohmann::json::parse(slurp(out + "/report.json"));
+  EXPECT_EQ(doc["channels"].size(), 4u);
+  EXPECT_FALSE(doc["redundant"].is_null());
+  EXPECT_EQ(doc["reference"]["rows"].size(), 16u);
+  const auto again = run_cli({"demo", "--hours", "0.25", "-o", out});
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
+}
+
+}  // namespace
+}  // namespace imunoise::test
