@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Builds the `fuzz` preset and fuzzes the text reader for a bounded time.
-#   fuzz/run.sh [SECONDS]   (default 30)
-# The corpus grows in build/fuzz/corpus, which starts as a copy of fuzz/seeds (never modified).
+# Builds the `fuzz` preset and fuzzes the text, ROS 1 bag and MCAP readers, each for a bounded
+# time.
+#   fuzz/run.sh [SECONDS]   (default 30; per target)
+# Each corpus grows in build/fuzz/corpus*, which starts as a copy of fuzz/seeds* (never modified).
 # Crash inputs are written to build/fuzz/artifacts/. Exits non-zero when the fuzzer finds a
 # crash, leak, timeout or sanitizer report, or when the build fails.
 set -euo pipefail
@@ -16,20 +17,28 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 
 cmake --preset fuzz >/dev/null
-cmake --build build/fuzz --target fuzz_text_reader -j2
+cmake --build build/fuzz --target fuzz_text_reader fuzz_bag_reader fuzz_mcap_reader -j2
 
-corpus="build/fuzz/corpus"
 artifacts="build/fuzz/artifacts"
-mkdir -p "$corpus" "$artifacts"
-cp -n fuzz/seeds/* "$corpus"/   # seeds are copied in, never written to
+mkdir -p "$artifacts"
 
-# One process (the build machine is shared). -timeout flags a single input running > 10 s as a
-# hang; -rss_limit_mb catches runaway memory; leaks are reported by ASan's leak checker.
-./build/fuzz/fuzz/fuzz_text_reader \
-  -max_total_time="$seconds" \
-  -timeout=10 \
-  -rss_limit_mb=2048 \
-  -max_len=65536 \
-  -print_final_stats=1 \
-  -artifact_prefix="$artifacts/" \
-  "$corpus"
+# One process per target (the build machine is shared). -timeout flags a single input running
+# > 10 s as a hang; -rss_limit_mb catches runaway memory; leaks are reported by ASan's leak
+# checker. The container seeds are whole files (~5-40 KB), hence the larger -max_len.
+fuzz_one() {
+  local target="$1" seeds="$2" corpus="$3" max_len="$4"
+  mkdir -p "$corpus"
+  cp -n "$seeds"/* "$corpus"/   # seeds are copied in, never written to
+  ./build/fuzz/fuzz/"$target" \
+    -max_total_time="$seconds" \
+    -timeout=10 \
+    -rss_limit_mb=2048 \
+    -max_len="$max_len" \
+    -print_final_stats=1 \
+    -artifact_prefix="$artifacts/$target-" \
+    "$corpus"
+}
+
+fuzz_one fuzz_text_reader fuzz/seeds build/fuzz/corpus 65536
+fuzz_one fuzz_bag_reader fuzz/seeds_bag build/fuzz/corpus_bag 131072
+fuzz_one fuzz_mcap_reader fuzz/seeds_mcap build/fuzz/corpus_mcap 131072

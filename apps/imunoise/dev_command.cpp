@@ -12,6 +12,7 @@
 #include "imunoise/confidence/fill_confidence.hpp"
 #include "imunoise/deviation.hpp"
 #include "imunoise/error.hpp"
+#include "imunoise/preprocess/preprocess.hpp"
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
 #include "imunoise/total.hpp"
@@ -39,6 +40,36 @@ struct DevOptionsCli {
   std::string theobr_ratios = "taylor-howe";
 };
 
+nlohmann::json json_number(double v) {
+  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
+}
+
+// Where the record came from and what preprocessing did (issue 16), on each curve object.
+void add_provenance(const PhaseRecord& record, nlohmann::json& object) {
+  if (!record.format.empty()) {
+    object["recording"] = {{"format", record.format}, {"stream", record.stream},
+                           {"channel", record.channel}};
+  }
+  if (!record.preprocessing.empty()) object["preprocessing"] = record.preprocessing;
+  if (record.davar) {
+    const auto& d = *record.davar;
+    object["davar"] = {{"window_s", d.window_s}, {"step_s", d.step_s}, {"window_start_s", d.window_start_s},
+                       {"tau_s", d.tau_s}, {"avar_si", d.avar}, {"reference_avar_si", d.reference_avar},
+                       {"window_flagged", d.window_flagged}, {"stationary", d.stationary},
+                       {"change_times_s", d.change_times_s}, {"suggested_skip_s", d.suggested_skip_s}};
+  }
+  if (!record.temperature_bins.empty()) {
+    auto bins = nlohmann::json::array();
+    for (const auto& b : record.temperature_bins) {
+      bins.push_back({{"low", b.low}, {"high", b.high}, {"samples", b.samples}, {"runs", b.segments},
+                      {"mean_temperature", b.mean_temperature}, {"bias_si", b.bias_si},
+                      {"bias_stderr_si", b.bias_stderr_si}, {"N_si", json_number(b.random_walk_si)},
+                      {"N_tau_s", b.random_walk_tau_s}, {"B_si", json_number(b.bias_instability_si)}});
+    }
+    object["temperature_bins"] = std::move(bins);
+  }
+}
+
 void run_dev(const DevOptionsCli& options) {
   if (options.format != "table" && options.format != "json" && options.format != "csv") {
     throw InputError("unknown --format '" + options.format + "'; use table, json or csv");
@@ -54,7 +85,9 @@ void run_dev(const DevOptionsCli& options) {
   const std::optional<int> forced_alpha =
       options.noise_type.empty() ? std::nullopt : std::optional<int>(parse_noise_type(options.noise_type));
   const TheoBrRatios theobr_ratios = parse_theobr_ratios(options.theobr_ratios);
-  const study::Record record = to_study_record(load_phase(options.input));
+  PhaseRecord loaded = load_phase(options.input);
+  // to_study_record moves the samples, the source and the timing; the provenance stays here.
+  const study::Record record = to_study_record(std::move(loaded));
   study::CurveOptions co;
   co.estimators = estimators;
   co.grid = grid;
@@ -71,7 +104,8 @@ void run_dev(const DevOptionsCli& options) {
   });
   std::string text;
   if (options.format == "json") {
-    const auto array = study::curves_json(record, curves);
+    auto array = study::curves_json(record, curves);
+    for (auto& object : array) add_provenance(loaded, object);
     text = (array.size() == 1 ? array[0] : array).dump(1) + "\n";
   } else if (options.format == "csv") {
     text = study::curves_csv(curves);

@@ -53,17 +53,33 @@ void run_fit(FitOptionsCli& options) {
   std::string why;
   if (!fo.IsValid(&why)) throw InputError("fit options: " + why);
 
-  const study::Record record = to_study_record(load_phase(options.input));
+  PhaseRecord loaded = load_phase(options.input);
+  if (loaded.segments.size() > 1) {
+    throw InputError(loaded.source + ": fit needs one contiguous record, but --gaps split / --outliers reject "
+                     "split it into " + std::to_string(loaded.segments.size()) + " segments; fix: fit the longest "
+                     "gap-free stretch, or use --allow-gaps / --outliers report");
+  }
+  // to_study_record moves the samples, the source and the timing; the provenance stays here.
+  const study::Record record = to_study_record(std::move(loaded));
   fit::FitResult result = study::fit_channel(record, fo, parse_tau_grid(options.taus));
 
   nlohmann::json json = fit::report_json(study::record_info(record), fo, result);
   options.spec.force = options.output.force;
   json["spec_comparison"] = run_spec_exports(options.spec, result.coefficients, record.rate_hz);
+  // Where the record came from and what preprocessing removed (issue 16).
+  if (!loaded.channel.empty()) {
+    json["recording"] = {{"format", loaded.format}, {"stream", loaded.stream},
+                      {"channel", loaded.channel}};
+  }
+  if (!loaded.preprocessing.empty()) json["preprocessing"] = loaded.preprocessing;
+  std::string preprocessing_lines;
+  for (const auto& line : loaded.preprocessing) preprocessing_lines += "# preprocessing: " + line + "\n";
   std::string text;
   if (options.format == "json") {
     text = json.dump(1) + "\n";
   } else {
-    text = study::fit_table(record, fo, result) + study::spec_table(json["spec_comparison"]);
+    text = preprocessing_lines + study::fit_table(record, fo, result) +
+           study::spec_table(json["spec_comparison"]);
     if (!text.empty() && text.back() != '\n') text += '\n';
   }
   write_output(options.output, text);

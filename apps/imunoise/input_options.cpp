@@ -2,6 +2,7 @@
 
 #include <sys/mman.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <exception>
@@ -14,6 +15,7 @@
 #include "imunoise/error.hpp"
 #include "imunoise/finite.hpp"
 #include "imunoise/io/binary_reader.hpp"
+#include "imunoise/io/recording.hpp"
 #include "imunoise/io/text_reader.hpp"
 #include "imunoise/phase.hpp"
 
@@ -129,12 +131,235 @@ void integrate_into(PhaseRecord& record, std::span<const double> values_si) {
   record.phase_si = phase_from_rate(values_si, 1.0 / record.rate_hz, offset);
 }
 
+// Timestamps checked as by io::check_timing, after refusing a record whose sample rate changes:
+// if more than 5 % of the intervals are off the median by over 1.5 x, the samples are not one rate with some dropped,
+// and neither --allow-gaps nor --gaps split can make one equally spaced record of them.
+io::TimingReport checked_timing(std::span<const double> time_s, const std::string& source,
+                                const io::LineMap* lines, bool allow_gaps) {
+  const io::TimingReport report = io::analyze_timing(time_s, source, lines);
+  // Off-rate intervals: gaps (> 1.5 median) and intervals shorter than median / 1.5 (a faster
+  // stretch when the median is the slower rate).
+  std::size_t off_rate = report.gaps.size();
+  for (std::size_t i = 1; i < time_s.size(); ++i) {
+    const double dt = time_s[i] - time_s[i - 1];
+    if (dt > 0.0 && dt * 1.5 < report.median_dt_s) ++off_rate;
+  }
+  if (off_rate > 10 && off_rate * 20 > report.n_samples) {
+    auto rate_of = [&](std::size_t begin, std::size_t end) {
+      std::vector<double> dt;
+      for (std::size_t i = begin + 1; i < end; ++i) dt.push_back(time_s[i] - time_s[i - 1]);
+      std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
+      return 1.0 / dt[dt.size() / 2];
+    };
+    const std::size_t tenth = std::max<std::size_t>(time_s.size() / 10, 2);
+    throw InputError(fmt::format(
+        "{}: mixed sample rates: {} of {} intervals differ from the median {:.6g} s by more than 1.5 x "
+        "({:.6g} Hz over the first tenth of the record, {:.6g} Hz over the last); fix: analyse each "
+        "rate separately (split the file where the rate changes); imunoise never resamples",
+        source, off_rate, report.n_samples - 1, report.median_dt_s, rate_of(0, tenth),
+        rate_of(time_s.size() - tenth, time_s.size())));
+  }
+  return io::check_timing(time_s, source, lines, allow_gaps);
+}
+
+// "30", "30s", "5min", "1.5h" -> seconds.
+double parse_duration_s(const std::string& text) {
+  std::size_t used = 0;
+  double value = 0.0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  const std::string unit = used ? text.substr(used) : "";
+  const double factor = unit.empty() || unit == "s" ? 1.0 : unit == "min" ? 60.0 : unit == "h" ? 3600.0 : 0.0;
+  if (used == 0 || factor == 0.0 || !std::isfinite(value) || value < 0.0) {
+    throw InputError("--skip " + text + " is not a duration; fix: pass seconds (30, 30s), minutes (5min), "
+                     "hours (0.5h) or auto");
+  }
+  return value * factor;
+}
+
+bool wants_preprocessing(const InputOptions& options) {
+  return !options.skip.empty() || options.detrend != "none" || !options.outliers.empty() ||
+         options.gaps == "split" || options.davar || !options.temperature.empty();
+}
+
+// The preprocessing steps on rate samples in SI, in order: warm-up skip, detrend, spikes, and
+// the split into segments at gaps and rejected spikes. `gap_breaks`: first sample after each
+// timestamp gap (for --gaps split). Each step says what it removed in record.preprocessing.
+std::vector<double> preprocess_rates(const InputOptions& options, PhaseRecord& record, std::vector<double> values,
+                                     std::vector<std::size_t> gap_breaks, std::vector<double> temperature = {}) {
+  if (!wants_preprocessing(options)) return values;
+  if (record.kind != InputKind::rate) {
+    throw InputError(record.source + ": --skip, --detrend, --outliers, --gaps split and --davar work on "
+                     "rate samples; fix: drop them, or pass rate input");
+  }
+  const std::string unit = record.unit_given ? std::string(si_unit_name(record.rate_unit.quantity)) : "input unit";
+  const double rate = record.rate_hz;
+  std::size_t skip = 0;
+  if (options.skip == "auto") {
+    preprocess::DavarOptions d;
+    d.window_s = std::max(static_cast<double>(values.size()) / rate / 20.0, 100.0 / rate);
+    const auto result = preprocess::dynamic_allan(values, rate, d);
+    skip = static_cast<std::size_t>(std::llround(result.suggested_skip_s * rate));
+    record.preprocessing.push_back(fmt::format(
+        "skip auto: the dynamic Allan variance (window {:.6g} s) {}; skipped the first {:.6g} s ({} samples)",
+        result.window_s, result.suggested_skip_s > 0 ? "flags a warm-up" : "flags no warm-up",
+        result.suggested_skip_s, skip));
+  } else if (!options.skip.empty()) {
+    const double skip_s = parse_duration_s(options.skip);
+    skip = static_cast<std::size_t>(std::llround(skip_s * rate));
+    record.preprocessing.push_back(fmt::format("skip: removed the first {:.6g} s ({} samples)", skip_s, skip));
+  }
+  if (skip >= values.size()) {
+    throw InputError(record.source + ": --skip removes all " + std::to_string(values.size()) +
+                     " samples; fix: skip less than the record");
+  }
+  values.erase(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(skip));
+  if (!options.temperature.empty()) {
+    // Binned on the rates as recorded (after the skip, before detrending: the bias per bin is
+    // what a temperature calibration needs).
+    if (temperature.size() != values.size() + skip) {
+      throw InputError(record.source + ": --temperature " + options.temperature + " has " +
+                       std::to_string(temperature.size()) + " samples, the rate " + std::to_string(values.size() + skip) +
+                       "; fix: choose a temperature column of the same record");
+    }
+    temperature.erase(temperature.begin(), temperature.begin() + static_cast<std::ptrdiff_t>(skip));
+    record.temperature_bins = preprocess::temperature_bins(values, temperature, rate, options.temperature_bin);
+    for (const auto& b : record.temperature_bins) {
+      record.preprocessing.push_back(fmt::format(
+          "temperature [{:g}, {:g}): {} samples in {} runs, mean {:.4g}; bias {:.6g} +- {:.2g} {}; "
+          "N {:.6g} {}*sqrt(s) (tau {:g} s); B {:.6g} {}", b.low, b.high, b.samples, b.segments,
+          b.mean_temperature, b.bias_si, b.bias_stderr_si, unit, b.random_walk_si, unit, b.random_walk_tau_s,
+          b.bias_instability_si, unit));
+    }
+    if (record.temperature_bins.empty()) {
+      record.preprocessing.push_back("temperature: no bin holds 1000 samples; fix: widen --temperature-bin");
+    }
+  }
+  std::vector<std::size_t> breaks;
+  for (const auto b : gap_breaks) if (b > skip) breaks.push_back(b - skip);
+
+  const auto order = preprocess::parse_detrend(options.detrend);
+  if (order != preprocess::DetrendOrder::none) {
+    const auto r = preprocess::detrend(values, rate, order);
+    std::string coefficients;
+    const char* powers[] = {"", "/s", "/s^2"};
+    for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
+      coefficients += fmt::format("{}c{} = {:.6g} {}{}", k ? ", " : "", k, r.coefficients[k], unit, powers[k]);
+    }
+    record.preprocessing.push_back(fmt::format(
+        "detrend {}: removed {} (RMS {:.6g} {} about the mean); this also removes rate ramp R and "
+        "biases rate random walk K low", options.detrend, coefficients, r.removed_rms, unit));
+  }
+
+  std::vector<std::size_t> removed;
+  if (!options.outliers.empty()) {
+    if (options.outliers != "fail" && options.outliers != "report" && options.outliers != "reject") {
+      throw InputError("--outliers " + options.outliers + " is not known; fix: pass fail, report or reject");
+    }
+    const auto r = preprocess::find_spikes(values, 0.0, record.source);
+    std::string first;
+    for (std::size_t k = 0; k < std::min<std::size_t>(r.indices.size(), 5); ++k) {
+      first += fmt::format("{}{} ({:.6g} {})", k ? ", " : "", r.indices[k] + skip,
+                           values[r.indices[k]], unit);
+    }
+    const std::string summary = fmt::format(
+        "{} spikes beyond {:.3g} robust sigma (median {:.6g} {}, 1.4826 MAD = {:.6g} {}){}{}",
+        r.indices.size(), r.threshold_sigmas, r.median, unit, r.robust_sigma, unit,
+        r.indices.empty() ? "" : " at samples ", first + (r.indices.size() > 5 ? ", ..." : ""));
+    if (options.outliers == "fail" && !r.indices.empty()) {
+      throw InputError(record.source + ": " + summary + "; fix: remove them, or pass --outliers reject "
+                       "(split at them) or --outliers report");
+    }
+    if (options.outliers == "reject") {
+      removed = r.indices;
+      record.preprocessing.push_back("outliers reject: " + summary + "; removed, the record split at each");
+    } else {
+      record.preprocessing.push_back("outliers " + options.outliers + ": " + summary);
+    }
+  }
+  if (!breaks.empty() || !removed.empty()) {
+    record.segments = preprocess::split_segments(values.size(), breaks, removed);
+    std::size_t kept = 0;
+    for (const auto& seg : record.segments) kept += seg.size();
+    if (!breaks.empty()) {
+      record.preprocessing.push_back(fmt::format(
+          "gaps split: {} gaps; analysed as {} segments ({} samples) whose Allan sums are pooled, no term "
+          "spanning a gap (nothing interpolated)", breaks.size(), record.segments.size(), kept));
+    }
+  }
+  if (options.davar) {
+    preprocess::DavarOptions d;
+    d.window_s = options.davar_window_s > 0 ? options.davar_window_s
+                                            : std::max(static_cast<double>(values.size()) / rate / 20.0, 100.0 / rate);
+    record.davar = preprocess::dynamic_allan(values, rate, d);
+    const auto& r = *record.davar;
+    std::string changes;
+    for (const double t : r.change_times_s) changes += fmt::format("{}{:.6g}", changes.empty() ? "" : ", ", t);
+    record.preprocessing.push_back(fmt::format(
+        "davar: {} windows of {:.6g} s every {:.6g} s at {} taus: {}{}{}",
+        r.avar.size(), r.window_s, r.step_s, r.tau_s.size(),
+        r.stationary ? "stationary (no window outside its chi-squared band)" : "NOT stationary",
+        changes.empty() ? "" : "; changes near t = " + changes + " s",
+        r.suggested_skip_s > 0 ? fmt::format("; suggested --skip {:.6g}", r.suggested_skip_s) : ""));
+  }
+  return values;
+}
+
+// Integrates preprocessed rate values; a split record keeps its rates and segments for the
+// pooled estimators.
+void finish_rates(PhaseRecord& record, std::vector<double> values) {
+  if (record.segments.size() > 1) {
+    record.n_samples = 0;
+    for (const auto& seg : record.segments) record.n_samples += seg.size();
+    record.rate_si = values;
+  } else {
+    if (record.segments.size() == 1) {
+      const auto seg = record.segments.front();
+      values = std::vector<double>(values.begin() + static_cast<std::ptrdiff_t>(seg.begin),
+                                   values.begin() + static_cast<std::ptrdiff_t>(seg.end));
+    }
+    record.segments.clear();
+    record.n_samples = values.size();
+  }
+  integrate_into(record, values);
+}
+
+std::vector<std::size_t> gap_breaks(const InputOptions& options, const PhaseRecord& record) {
+  std::vector<std::size_t> breaks;
+  if (options.gaps == "split" && record.timing) {
+    for (const auto& g : record.timing->gaps) breaks.push_back(g.index);
+  }
+  return breaks;
+}
+
+bool gaps_allowed(const InputOptions& options) {
+  if (!options.gaps.empty() && options.gaps != "fail" && options.gaps != "split") {
+    throw InputError("--gaps " + options.gaps + " is not known; fix: pass fail or split");
+  }
+  if (options.gaps == "split" && options.allow_gaps) {
+    throw InputError("--gaps split and --allow-gaps contradict each other; fix: drop one");
+  }
+  return options.allow_gaps || options.gaps == "split";
+}
+
 void load_binary(const InputOptions& options, PhaseRecord& record, double to_si) {
   if (!options.time_column.empty()) {
     throw InputError("--time-column is for text input; binary input needs --rate");
   }
   require_rate(record.rate_hz, record.source);
   const auto read = binary_options(options);
+  if (wants_preprocessing(options)) {
+    // Preprocessing needs the whole record (median, fits): read it all instead of streaming.
+    if (options.gaps == "split") throw InputError(record.source + ": --gaps split needs timestamps; binary input has none");
+    auto values = options.file == "-" ? io::read_binary_stream(std::cin, record.source, read)
+                                      : io::read_binary_file(options.file, read);
+    for (auto& v : values) v *= to_si;
+    finish_rates(record, preprocess_rates(options, record, std::move(values), {}));
+    return;
+  }
   std::unique_ptr<io::BinaryReader> reader;
   if (options.file == "-") {
     reader = std::make_unique<io::BinaryReader>(std::cin, record.source, read);
@@ -177,7 +402,7 @@ void load_text(const InputOptions& options, PhaseRecord& record, double to_si) {
                                 ? io::read_text_stream(std::cin, record.source, read)
                                 : io::read_text_file(options.file, read);
   if (read.time_column) {
-    record.timing = io::check_timing(columns.time_s, record.source, &columns.lines, options.allow_gaps);
+    record.timing = checked_timing(columns.time_s, record.source, &columns.lines, gaps_allowed(options));
     if (record.rate_hz > 0 && std::abs(record.timing->rate_hz / record.rate_hz - 1.0) > 0.01) {
       throw InputError(record.source + ": --rate " + fmt::format("{}", record.rate_hz) +
                        " Hz disagrees with the time column (" +
@@ -188,8 +413,93 @@ void load_text(const InputOptions& options, PhaseRecord& record, double to_si) {
   }
   require_rate(record.rate_hz, record.source);
   for (auto& v : columns.values) v *= to_si;
+  if (wants_preprocessing(options)) {
+    std::vector<double> temperature;
+    if (!options.temperature.empty()) {
+      if (options.file == "-") throw InputError("--temperature needs a file, not standard input");
+      io::TextReadOptions t;
+      t.column = io::parse_column_selector(options.temperature);
+      temperature = io::read_text_file(options.file, t).values;
+    }
+    finish_rates(record, preprocess_rates(options, record, std::move(columns.values), gap_breaks(options, record),
+                                          std::move(temperature)));
+    return;
+  }
   record.n_samples = columns.values.size();
   integrate_into(record, columns.values);
+}
+
+// A container recording (bag, MCAP, HDF5, EuRoC): one channel chosen by --column, its unit
+// from the file unless --units is given (and then they must agree), the rate from the
+// timestamps (checked like a text time column) or --rate.
+void load_container(const InputOptions& options, PhaseRecord& record) {
+  if (options.file == "-") throw InputError("--topic/--dataset need a file, not standard input");
+  if (!options.binary.empty()) throw InputError(record.source + ": --binary is for raw sample files; drop it");
+  if (!options.time_column.empty()) {
+    throw InputError(record.source + ": --time-column is for text files; this file's timestamps are read "
+                     "from the container (HDF5: --time-dataset)");
+  }
+  io::RecordingOptions read;
+  read.topic = options.topic;
+  read.dataset = options.dataset;
+  read.time_dataset = options.time_dataset;
+  const io::Recording recording = io::read_recording(options.file, read);
+  record.format = std::string(io::format_name(recording.format));
+  record.stream = recording.stream;
+  if (options.column.empty() && recording.channels.size() != 1) {
+    throw InputError(record.source + ": " + std::to_string(recording.channels.size()) +
+                     " channels (" + recording.channel_list() + "); choose one with --column NAME");
+  }
+  const io::Channel& channel =
+      options.column.empty() ? recording.channels.front() : recording.channel(options.column);
+  record.channel = channel.name;
+  Unit unit;
+  if (channel.unit && !options.units.empty()) {
+    unit = unit_of(options, record.kind, record.unit_given);
+    if (unit.name != channel.unit->name) {
+      throw InputError(record.source + ": channel " + channel.name + " is in " + channel.unit->name +
+                       " according to the file, but --units says " + options.units + "; drop --units");
+    }
+  } else if (channel.unit) {
+    if (record.kind != InputKind::rate) {
+      throw InputError(record.source + ": channel " + channel.name + " holds rates (" + channel.unit->name +
+                       "); drop --input angle");
+    }
+    unit = *channel.unit;
+    record.unit_given = true;
+  } else {
+    unit = unit_of(options, record.kind, record.unit_given);
+  }
+  record.rate_unit = record.kind == InputKind::rate || !record.unit_given ? unit : derivative_unit(unit);
+  if (!recording.time_s.empty()) {
+    record.timing = checked_timing(recording.time_s, record.source, nullptr, gaps_allowed(options));
+    if (record.rate_hz > 0 && std::abs(record.timing->rate_hz / record.rate_hz - 1.0) > 0.01) {
+      throw InputError(record.source + ": --rate " + fmt::format("{}", record.rate_hz) +
+                       " Hz disagrees with the file's timestamps (" +
+                       fmt::format("{:.6g}", record.timing->rate_hz) + " Hz from the median interval); drop --rate");
+    }
+    if (record.rate_hz <= 0) record.rate_hz = record.timing->rate_hz;
+  }
+  require_rate(record.rate_hz, record.source);
+  const double to_si = unit.to_si * value_scale(options);
+  std::vector<double> values(channel.values);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) {
+      throw InputError(record.source + ": channel " + channel.name + " sample " + std::to_string(i) +
+                       " is not finite (NaN or Inf); the analysis needs every sample");
+    }
+    values[i] *= to_si;
+  }
+  std::vector<double> temperature;
+  if (!options.temperature.empty()) temperature = recording.channel(options.temperature).values;
+  finish_rates(record, preprocess_rates(options, record, std::move(values), gap_breaks(options, record),
+                                        std::move(temperature)));
+}
+
+bool is_container(const InputOptions& options) {
+  if (!options.topic.empty() || !options.dataset.empty() || !options.time_dataset.empty()) return true;
+  if (options.file == "-" || !options.binary.empty()) return false;
+  return io::detect_container(options.file).has_value();
 }
 
 // The sample rate stated by the header of a text file written by `imunoise simulate`
@@ -211,7 +521,7 @@ double simulated_file_rate_hz(const std::string& path) {
 }  // namespace
 
 void add_input_options(CLI::App& command, InputOptions& options) {
-  command.add_option("file", options.file, "input file (text or raw binary); - for standard input")
+  command.add_option("file", options.file, "input file (text, raw binary, ROS 1 bag, MCAP, HDF5 or EuRoC CSV); - for standard input")
       ->required();
   command.add_option("--rate", options.rate_hz, "sample rate (Hz)");
   command.add_option("--input", options.input, "what the samples are: rate (freq) or angle (phase)")
@@ -225,6 +535,30 @@ void add_input_options(CLI::App& command, InputOptions& options) {
                      "column of timestamps (s, or integer ns); derives the rate and checks gaps");
   command.add_flag("--allow-gaps", options.allow_gaps,
                    "treat a record with timestamp gaps as equally spaced (never interpolated)");
+  command.add_option("--topic", options.topic,
+                     "ROS 1 bag / MCAP: topic of sensor_msgs Imu messages (channels gyro_x gyro_y "
+                     "gyro_z accel_x accel_y accel_z; choose with --column)");
+  command.add_option("--dataset", options.dataset, "HDF5: dataset path, 1-D or 2-D (N x channels)");
+  command.add_option("--time-dataset", options.time_dataset,
+                     "HDF5: 1-D dataset of timestamps (integer ns, or s; a units attribute overrides)");
+  command.add_option("--skip", options.skip,
+                     "remove a warm-up: DURATION (30, 30s, 5min, 0.5h) or auto (from the dynamic Allan variance)");
+  command.add_option("--detrend", options.detrend,
+                     "subtract a polynomial in time: none, linear, quadratic (removes rate ramp R and "
+                     "biases rate random walk K low)")
+      ->capture_default_str();
+  command.add_option("--outliers", options.outliers,
+                     "spikes by robust MAD: fail, report, or reject (removed; the record split at each)");
+  command.add_option("--gaps", options.gaps,
+                     "timestamp gaps: fail (default), or split (segments whose Allan sums are pooled; "
+                     "never interpolated)");
+  command.add_flag("--davar", options.davar,
+                   "dynamic Allan variance (sliding window) and a stationarity verdict");
+  command.add_option("--davar-window", options.davar_window_s, "DAVAR window (s); default record / 20");
+  command.add_option("--temperature", options.temperature,
+                     "temperature column/channel: bias, N and B reported per temperature bin");
+  command.add_option("--temperature-bin", options.temperature_bin, "temperature bin width (channel's unit)")
+      ->capture_default_str();
   command.add_option("--binary", options.binary, "raw binary samples: f32|f64|i16|i32[:le|be]");
   command.add_option("--channels", options.channels, "interleaved channels in binary input")
       ->check(CLI::Range(std::size_t{1}, std::size_t{65536}));
@@ -241,8 +575,18 @@ PhaseRecord load_phase(const InputOptions& options) {
   }
   record.kind = parse_input_kind(options.input);
   record.rate_hz = options.rate_hz;
+  if (is_container(options)) {
+    load_container(options, record);
+    if (record.n_samples == 0) throw InputError(record.source + ": no samples");
+    require_finite_phase(record);
+    return record;
+  }
+  record.format = is_binary(options) ? "binary" : "text";
   const Unit unit = unit_of(options, record.kind, record.unit_given);
-  record.rate_unit = record.kind == InputKind::rate || !record.unit_given ? unit : derivative_unit(unit);
+  // Angle input's rate unit is the derivative of its unit, given or not: unitless phase (clock
+  // data in seconds) has the neutral time unit, whose rate is dimensionless, so the estimators
+  // reported in the angle unit (tdev, ttotdev, mtie, tierms) convert back through it.
+  record.rate_unit = record.kind == InputKind::rate ? unit : derivative_unit(unit);
   const double to_si = unit.to_si * value_scale(options);
   if (is_binary(options)) {
     load_binary(options, record, to_si);

@@ -7,7 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "imunoise/io/recording.hpp"
 #include "imunoise/io/timestamps.hpp"
+#include "imunoise/preprocess/dynamic_allan.hpp"
+#include "imunoise/preprocess/preprocess.hpp"
+#include "imunoise/preprocess/temperature.hpp"
 #include "imunoise/series.hpp"
 #include "imunoise/units.hpp"
 
@@ -25,6 +29,18 @@ struct InputOptions {
   double scale = 1.0;            ///< --scale: value = raw * scale
   double sensitivity = 0.0;      ///< --sensitivity: value = raw / sensitivity (0: unset)
   bool allow_gaps = false;       ///< --allow-gaps
+  std::string topic;             ///< --topic (ROS 1 bag, MCAP)
+  std::string dataset;           ///< --dataset (HDF5)
+  std::string time_dataset;      ///< --time-dataset (HDF5)
+  // Preprocessing (rate input): every step is reported in PhaseRecord::preprocessing.
+  std::string skip;              ///< --skip DURATION (s, min, h suffix) or "auto" (from DAVAR)
+  std::string detrend = "none";  ///< --detrend none|linear|quadratic
+  std::string outliers;          ///< --outliers fail|report|reject ("" = not checked)
+  std::string gaps;              ///< --gaps fail|split ("" = fail, unless --allow-gaps)
+  bool davar = false;            ///< --davar: dynamic Allan variance and stationarity verdict
+  double davar_window_s = 0.0;   ///< --davar-window (0: record / 20)
+  std::string temperature;       ///< --temperature COLUMN|CHANNEL: bin the analysis by temperature
+  double temperature_bin = 5.0;  ///< --temperature-bin WIDTH (the temperature channel's unit)
 };
 
 void add_input_options(CLI::App& command, InputOptions& options);
@@ -39,6 +55,17 @@ struct PhaseRecord {
   Unit rate_unit;                ///< unit deviations are reported in
   bool unit_given = false;       ///< false when --units was not given (label "input unit")
   std::optional<io::TimingReport> timing;
+  std::string format;            ///< container read ("text", "binary", "ROS 1 bag", "MCAP", ...)
+  std::string stream;            ///< topic or dataset read, when the container has several
+  std::string channel;           ///< channel read (e.g. "gyro_x"), when the container names them
+  /// One line per preprocessing step: what was removed and how much.
+  std::vector<std::string> preprocessing;
+  /// More than one when the record was split (--gaps split, --outliers reject): rate-sample
+  /// ranges analysed as independent segments whose Allan sums are pooled (never joined).
+  std::vector<preprocess::Segment> segments;
+  std::vector<double> rate_si;   ///< the rate samples (SI), kept only when split into segments
+  std::optional<preprocess::DavarResult> davar;
+  std::vector<preprocess::TemperatureBin> temperature_bins;  ///< with --temperature
 };
 
 /// Reads, checks and integrates the input. Raw binary files are streamed in chunks straight

@@ -13,6 +13,13 @@ study::Record to_study_record(PhaseRecord&& record, std::string name) {
   r.rate_unit = record.rate_unit;
   r.unit_given = record.unit_given;
   r.timing = std::move(record.timing);
+  r.segments = std::move(record.segments);
+  r.rate_si = std::move(record.rate_si);
+  if (!record.channel.empty()) {
+    r.table_notes.push_back(record.format + ": " + (record.stream.empty() ? "" : record.stream + " ") +
+                            "channel " + record.channel);
+  }
+  for (const auto& line : record.preprocessing) r.table_notes.push_back("preprocessing: " + line);
   return r;
 }
 

@@ -48,6 +48,14 @@ namespace imunoise {
 std::vector<DevPoint> totdev(std::span<const double> phase, double tau0_s,
                              std::span<const std::size_t> factors, const DevOptions& options = {});
 
+/// totdev over the whole range the reflection supports, 1 <= m <= N-1 (AllanTools' range;
+/// totdev() keeps Stable32's m <= floor((N-1)/2)). Same formula, n = N - 2 at every m. Beyond
+/// N/2 the estimate leans mostly on reflected points: use it for compatibility, not for
+/// inference. Throws InputError for m outside 1..N-1 or N < 3.
+std::vector<DevPoint> totdev_reflected_range(std::span<const double> phase, double tau0_s,
+                                             std::span<const std::size_t> factors,
+                                             const DevOptions& options = {});
+
 std::vector<DevPoint> mtotdev(std::span<const double> phase, double tau0_s,
                               std::span<const std::size_t> factors, const DevOptions& options = {});
 

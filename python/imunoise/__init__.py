@@ -8,6 +8,10 @@ Deviations are in the unit of the rate; taus in seconds.
 ``imunoise.fit(rate_samples, rate_hz, units="deg/s")`` returns the noise-model fit (Q, N, B, K,
 R with 95 % intervals and verdicts) as a dict, the document of ``imunoise fit --format json``;
 ``imunoise.simulate(...)`` makes records with known noise.
+
+``import imunoise.allantools as allantools`` is a drop-in for the AllanTools package (its
+conventions, helpers and return types; docs/allantools.md); the functions here keep imunoise's
+Stable32 conventions.
 """
 from ._imunoise import InputError, deviation, fit, simulate, simulate_preset
 from ._imunoise import nav

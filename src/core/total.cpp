@@ -71,6 +71,22 @@ long double reflected_sum(std::span<const double> u, std::size_t m, unsigned thr
 std::vector<DevPoint> totdev(std::span<const double> phase, double tau0_s,
                              std::span<const std::size_t> factors, const DevOptions& options) {
   detail::check_factors(Estimator::totdev, phase, tau0_s, factors);
+  return totdev_reflected_range(phase, tau0_s, factors, options);
+}
+
+std::vector<DevPoint> totdev_reflected_range(std::span<const double> phase, double tau0_s,
+                                             std::span<const std::size_t> factors,
+                                             const DevOptions& options) {
+  // The N-2 reflected points on each side reach i - m and i + m for every i = 1..N-2 as long
+  // as m <= N-1; only the rate check of check_factors is repeated here.
+  detail::check_factors(Estimator::totdev, phase, tau0_s, {});
+  for (const std::size_t m : factors) {
+    if (phase.size() < 3 || m == 0 || m > phase.size() - 1) {
+      throw InputError("totdev: averaging factor m = " + std::to_string(m) +
+                       " is outside the reflected range 1..N-1 for " +
+                       std::to_string(phase.size()) + " phase samples (N >= 3)");
+    }
+  }
   std::vector<DevPoint> points(factors.size());
   if (factors.empty()) return points;
   const std::vector<double> ext = reflect_inverted(phase);

@@ -148,12 +148,19 @@ ModelSeries covariance_series(const NavOptions& o, const AxisTerms& terms, const
     const long target = std::lround(t / o.dt_s);
     if (target > k) {
       const long m = target - k;
-      if (m != cached_m) {
-        compose(d.phi, d.qd, m, phi_m, q_m);
-        cached_m = m;
+      if (o.covariance_per_step) {
+        for (long j = 0; j < m; ++j) {
+          p = d.phi * p * d.phi.transpose() + d.qd;
+          p = 0.5 * (p + p.transpose()).eval();
+        }
+      } else {
+        if (m != cached_m) {
+          compose(d.phi, d.qd, m, phi_m, q_m);
+          cached_m = m;
+        }
+        p = phi_m * p * phi_m.transpose() + q_m;
+        p = 0.5 * (p + p.transpose()).eval();
       }
-      p = phi_m * p * phi_m.transpose() + q_m;
-      p = 0.5 * (p + p.transpose()).eval();
       k = target;
     }
     s.t_s.push_back(t);

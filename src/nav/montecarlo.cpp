@@ -17,9 +17,10 @@
 namespace imunoise::nav {
 namespace {
 
-// Runs per block: blocks are the unit of work and of merging (in block order), so the sums,
-// hence the result, are the same for any thread count.
-constexpr std::size_t kBlockRuns = 16;
+// Blocks of runs are the unit of work and of merging (in block order), so the sums, hence the
+// result, are the same for any thread count. At least 16 runs a block, and at most 1024 blocks
+// (bounded memory for the per-block sums); the size depends on the run count only.
+std::size_t block_runs(std::size_t runs) { return std::max<std::size_t>(16, (runs + 1023) / 1024); }
 constexpr std::size_t kChunk = 2048;
 
 // Per reported time: sums over runs of x, x^2, x^4 for both channels and of r^4, r^2 = N^2 + E^2.
@@ -89,6 +90,7 @@ ModelSeries montecarlo_series(const NavOptions& o, const AxisTerms& terms, const
   const long total_steps = report_step.back();
   const std::size_t times = t_s.size();
   const std::size_t runs = o.runs;
+  const std::size_t kBlockRuns = block_runs(runs);
   const std::size_t blocks = (runs + kBlockRuns - 1) / kBlockRuns;
   std::vector<Sums> block_sums(blocks, Sums(times));
 

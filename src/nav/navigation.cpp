@@ -98,6 +98,11 @@ bool NavOptions::IsValid(std::string* why) const {
   for (std::size_t a = 0; a < 3; ++a) {
     const GyroTerms t = terms_of(axes[a]);
     const char* axis = a == 0 ? "x (north)" : a == 1 ? "y (east)" : "z (down)";
+    if (axes[a].coefficients.quantity != Quantity::angular_rate) {
+      return fail(std::string("axis ") + axis + ": the noise coefficients are not a gyro's (" +
+                  std::string(quantity_name(axes[a].coefficients.quantity)) +
+                  "); the navigation error needs angular-rate coefficients");
+    }
     for (double v : {t.q_rad, t.n_rad_sqrt_s, t.b_rad_s, t.k_rad_s_sqrt_s, t.r_rad_s2, t.gm_sigma_rad_s, t.bias_rad_s}) {
       if (!std::isfinite(v)) return fail(std::string("a noise coefficient of axis ") + axis + " is not finite");
     }

@@ -139,10 +139,17 @@ double quantization_rad(double q, double h, double t_s, double w0) {
   const double ak = (x_minus_sin(xh * static_cast<double>(k)) - x_minus_sin(xh * static_cast<double>(k - 1))) / w0;
   const double s_half = std::sin(0.5 * xh);
   const double gain = 4.0 * s_half * s_half / w0;
+  // sum_{m=1}^{k-1} sin^2(m xh) = (k-1)/2 - sin((k-1) xh) cos(k xh) / (2 sin xh); the closed
+  // form cancels while k xh is small (the sum ~ xh^2 k^3 / 3), where the direct sum is short.
   double sum = 0.0;
-  for (long m = 1; m < k; ++m) {
-    const double s = std::sin(xh * static_cast<double>(m));
-    sum += s * s;
+  const double kd = static_cast<double>(k);
+  if (kd * xh < 0.5) {
+    for (long m = 1; m < k; ++m) {
+      const double s = std::sin(xh * static_cast<double>(m));
+      sum += s * s;
+    }
+  } else {
+    sum = 0.5 * (kd - 1.0) - std::sin((kd - 1.0) * xh) * std::cos(kd * xh) / (2.0 * std::sin(xh));
   }
   const double var = (q / h) * (q / h) * (a1 * a1 + ak * ak + gain * gain * sum);
   return std::sqrt(var);

@@ -79,11 +79,25 @@ std::vector<Curve> compute_curves(const Record& record, const CurveOptions& opti
           "ThêoBR variance = Theo1 variance x {:.6g} (Avar/Theo1 averaged over {} taus, {} rule){}{}",
           kf.avar_over_theo1, kf.ratios, options.theobr_ratios_name,
           skip_note.empty() ? "" : "; ", skip_note);
+    } else if (!factors.empty() && record.segments.size() > 1) {
+      // A split record (--gaps split, --outliers reject): the segments' Allan sums are pooled,
+      // with chi-squared bounds from the summed edf (preprocess.hpp).
+      if (estimator != Estimator::oadev) {
+        throw InputError(record.source + ": the record is split into " + std::to_string(record.segments.size()) +
+                         " segments, whose sums are pooled for oadev only; fix: --estimator oadev, or "
+                         "drop --gaps split / --outliers reject");
+      }
+      points = preprocess::pooled_oadev(record.rate_si, record.segments, tau0_s, factors, options.ci_level);
+      if (options.no_ci) {
+        for (auto& p : points) p.ci_low = p.ci_high = p.edf = std::numeric_limits<double>::quiet_NaN();
+      }
+      skip_note = "pooled over " + std::to_string(record.segments.size()) +
+                  " segments; bounds from the summed simple edf (n/m - 1 per segment)";
     } else if (!factors.empty()) {
       points = compute_deviation(estimator, record.phase_si, tau0_s, factors, {options.threads});
     }
     std::vector<PointConfidence> confidence;
-    if (!options.no_ci) {
+    if (!options.no_ci && record.segments.size() <= 1) {
       confidence = fill_confidence(points, estimator, record.phase_si, options.ci_level,
                                    options.forced_alpha);
     }
@@ -189,8 +203,10 @@ std::string curves_table(const Record& record, const std::vector<Curve>& curves,
                        t.rate_hz, t.median_dt_s, 100 * t.jitter_rel_std, 100 * t.jitter_rel_max,
                        t.gaps.size(), t.missing_samples);
   }
+  for (const auto& line : record.table_notes) out += "# " + line + "\n";
   for (const auto& curve : curves) {
-    const std::string bounds = curve.confidence.empty()
+    const std::string bounds = curve.confidence.empty() &&
+                                       !(curve.points.size() && std::isfinite(curve.points[0].ci_low))
                                    ? std::string("no confidence bounds (--no-ci)")
                                    : fmt::format("{:.1f}% confidence", 100 * level);
     out += fmt::format("\n{} [{}], {}{}\n", curve.label, curve.unit, bounds,

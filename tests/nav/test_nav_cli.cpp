@@ -41,6 +41,11 @@ TEST(NavCli, JsonContractAndThePapersLongitude) {
   }
   EXPECT_EQ(doc["models"][0]["model"], "paper");
   EXPECT_NEAR(doc["models"][0]["lon_deg"].back().get<double>(), 3.9, 0.05);
+  // The sigma_eps each published figure needs: only the longitude's is gyro 1's N.
+  const auto& need = doc["models"][0]["sigma_eps_for_published_deg_s"];
+  EXPECT_NEAR(need["lon"].get<double>() / 8.9e-4, 1.0, 0.005);
+  EXPECT_NEAR(need["lat"].get<double>(), 3.6827e-4, 1e-8);
+  EXPECT_NEAR(need["path"].get<double>(), 4.6320e-5, 1e-9);
   // ARW only: the Schuler path error at 1 h is references.md's 8.33 km.
   EXPECT_NEAR(doc["models"][1]["path_m"].back().get<double>() / 8.33e3, 1.0, 0.005);
 }

@@ -196,6 +196,24 @@ TEST(NavCovariance, StaysSymmetricAndPositiveSemiDefinite) {
   EXPECT_GT(c.min_eigenvalue_ratio, -1e-12);
 }
 
+TEST(NavCovariance, DoublingEqualsStepByStepPropagation) {
+  NavOptions o = two_channel(1.0);
+  o.step_s = 600.0;
+  for (auto& a : o.axes) {  // 13 states: cheap enough step by step under the sanitizers
+    a.coefficients.random_walk = present(8.9e-4 * kDeg);
+    a.coefficients.rate_random_walk = present(0.15e-4 * kDeg);
+    a.bias_rad_s = 1e-6;
+  }
+  o.axes[1].coefficients.gauss_markov = GaussMarkovTerm{present(1e-5), present(300.0)};
+  o.models = {Model::covariance};
+  const NavResult fast = navigation_error(o);
+  o.covariance_per_step = true;
+  const NavResult slow = navigation_error(o);
+  for (std::size_t i = 1; i < fast.t_s.size(); ++i) {
+    EXPECT_NEAR(fast.models[0].radial_m[i] / slow.models[0].radial_m[i], 1.0, 1e-11);
+  }
+}
+
 // --- closed forms: limits and the switch to power series ------------------------------------
 
 TEST(NavSchuler, SeriesAndClosedFormMeetAtTheSwitch) {
@@ -231,6 +249,22 @@ TEST(NavSchuler, QuantizationIsBoundedAndSmall) {
   EXPECT_NEAR(v / (q * (1.0 - std::cos(w0 * 3600.0))), 1.0, 0.01);
 }
 
+TEST(NavSchuler, QuantizationClosedSumEqualsTheDirectSum) {
+  // Beyond k w0 h = 0.5 the sum of sin^2 is in closed form: compare with the defining formula.
+  const double w0 = 1.24001e-3, q = 1e-6, h = 0.5;
+  for (double t : {500.0, 3600.0, 21600.0}) {
+    const long k = std::lround(t / h);
+    const double xh = w0 * h;
+    auto s = [](double x) { return x - std::sin(x); };
+    const double a1 = s(xh) / w0, ak = (s(xh * static_cast<double>(k)) - s(xh * static_cast<double>(k - 1))) / w0;
+    double sum = 0.0;
+    for (long m = 1; m < k; ++m) sum += std::pow(std::sin(xh * static_cast<double>(m)), 2);
+    const double g = 4 * std::pow(std::sin(xh / 2), 2) / w0;
+    const double direct = (q / h) * std::sqrt(a1 * a1 + ak * ak + g * g * sum);
+    EXPECT_NEAR(schuler::quantization_rad(q, h, t, w0) / direct, 1.0, 1e-9) << t;
+  }
+}
+
 TEST(NavPaper, InversionsReturnTheInput) {
   const double w0 = 1.24001e-3;
   const double eps = 8.9e-4 * kDeg;
@@ -263,6 +297,9 @@ TEST(NavBadInput, OptionsAreCheckedWithAClearMessage) {
   bad = o;
   bad.axes[1].coefficients.random_walk = Coefficient{};
   EXPECT_NE(message(bad).find("no noise term"), std::string::npos);
+  bad = o;
+  bad.axes[2].coefficients.quantity = Quantity::acceleration;
+  EXPECT_NE(message(bad).find("not a gyro's"), std::string::npos);
   bad = o;
   bad.step_s = 0.5;
   EXPECT_NE(message(bad).find("--step"), std::string::npos);

@@ -80,6 +80,9 @@ struct NavOptions {
   /// (N in deg/sqrt(s) read as deg/s), east axis.
   std::optional<double> paper_sigma_eps_rad_s;
   EarthModel earth;
+  /// covariance: propagate every dt step between reported times instead of composing the
+  /// step by doubling (same result to rounding; the baseline of bench/bench_nav.cpp).
+  bool covariance_per_step = false;
 
   /// False with a message naming the field and the fix.
   bool IsValid(std::string* why) const;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "imunoise/io/timestamps.hpp"
+#include "imunoise/preprocess/preprocess.hpp"
 #include "imunoise/series.hpp"
 #include "imunoise/units.hpp"
 
@@ -23,6 +24,13 @@ struct Record {
   Unit rate_unit;                ///< unit deviations are reported in
   bool unit_given = false;       ///< false when no unit was given (label "input unit")
   std::optional<io::TimingReport> timing;
+  /// A record split at gaps or rejected outliers (--gaps split, --outliers reject): the index
+  /// ranges analysed as independent segments, and the rate samples (SI) their pooled oadev is
+  /// computed from (preprocess.hpp). Empty for a contiguous record.
+  std::vector<preprocess::Segment> segments;
+  std::vector<double> rate_si;
+  /// Lines printed under the record's header in text tables (recording, preprocessing).
+  std::vector<std::string> table_notes;
 };
 
 /// Label of the record's rate unit (or of its integral, for tdev/mtie-like estimators): its

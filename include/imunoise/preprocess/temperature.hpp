@@ -1,0 +1,38 @@
+#pragma once
+// Temperature dependence: the samples are binned by a temperature channel into ranges of fixed
+// width, and each bin gets its own coefficients from its own samples. A bin's samples are
+// usually several runs (the temperature passes through the range more than once); each run is
+// a segment and the overlapping Allan sums are pooled over them (preprocess.hpp), never joined.
+//
+// Per bin: the bias (mean rate), the angle/velocity random walk read off the overlapping Allan
+// deviation at the tau nearest 1 s, N = sigma(tau) sqrt(tau) (exact for white rate noise), and
+// the bias-instability floor B = min sigma / 0.664 (IEEE 952 flicker read-off).
+#include <cstddef>
+#include <span>
+#include <vector>
+
+#include "imunoise/deviation.hpp"
+
+namespace imunoise::preprocess {
+
+struct TemperatureBin {
+  double low = 0.0;             ///< bin range [low, high) in the temperature channel's unit
+  double high = 0.0;
+  std::size_t samples = 0;
+  std::size_t segments = 0;     ///< contiguous runs of samples in the bin
+  double mean_temperature = 0.0;
+  double bias_si = 0.0;         ///< mean rate (SI)
+  double bias_stderr_si = 0.0;  ///< sample sd / sqrt(samples): white-noise standard error (SI)
+  double random_walk_si = 0.0;  ///< N = sigma(tau) sqrt(tau) at the tau nearest 1 s (SI * sqrt(s)); NaN if none
+  double random_walk_tau_s = 0.0;
+  double bias_instability_si = 0.0;  ///< min sigma / 0.664 (SI); NaN if no tau
+  std::vector<DevPoint> oadev;  ///< pooled over the bin's segments (SI)
+};
+
+/// Bins rate samples (SI, at rate_hz) by temperature into [k w, (k+1) w) ranges of width
+/// `bin_width`; bins with fewer than `min_samples` samples are left out. Throws InputError for
+/// a non-positive width, mismatched lengths or a non-finite temperature.
+std::vector<TemperatureBin> temperature_bins(std::span<const double> rate_si, std::span<const double> temperature,
+                                             double rate_hz, double bin_width, std::size_t min_samples = 1000);
+
+}  // namespace imunoise::preprocess

@@ -1,0 +1,89 @@
+#include "imunoise/preprocess/temperature.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <string>
+
+#include "imunoise/error.hpp"
+#include "imunoise/preprocess/preprocess.hpp"
+
+namespace imunoise::preprocess {
+
+std::vector<TemperatureBin> temperature_bins(std::span<const double> rate_si, std::span<const double> temperature,
+                                             double rate_hz, double bin_width, std::size_t min_samples) {
+  if (!(bin_width > 0.0) || !std::isfinite(bin_width)) {
+    throw InputError("temperature bin width must be positive, got " + std::to_string(bin_width) +
+                     "; fix: pass e.g. --temperature-bin 5");
+  }
+  if (rate_si.size() != temperature.size()) {
+    throw InputError("the temperature channel has " + std::to_string(temperature.size()) + " samples but the rate " +
+                     std::to_string(rate_si.size()) + "; fix: give a temperature for every sample");
+  }
+  // Runs of consecutive samples in the same bin, grouped by bin.
+  std::map<long long, std::vector<Segment>> runs;
+  for (std::size_t i = 0; i < temperature.size();) {
+    if (!std::isfinite(temperature[i])) {
+      throw InputError("temperature sample " + std::to_string(i) + " is not finite; fix: repair the temperature channel");
+    }
+    const auto bin = static_cast<long long>(std::floor(temperature[i] / bin_width));
+    std::size_t j = i + 1;
+    while (j < temperature.size() && std::isfinite(temperature[j]) &&
+           static_cast<long long>(std::floor(temperature[j] / bin_width)) == bin) {
+      ++j;
+    }
+    runs[bin].push_back({i, j});
+    i = j;
+  }
+  const double tau0 = 1.0 / rate_hz;
+  std::vector<TemperatureBin> out;
+  for (const auto& [bin, segments] : runs) {
+    TemperatureBin b;
+    b.low = static_cast<double>(bin) * bin_width;
+    b.high = b.low + bin_width;
+    b.segments = segments.size();
+    long double sum = 0.0L;
+    long double sum_t = 0.0L;
+    for (const auto& s : segments) {
+      b.samples += s.size();
+      for (std::size_t i = s.begin; i < s.end; ++i) {
+        sum += rate_si[i];
+        sum_t += temperature[i];
+      }
+    }
+    if (b.samples < min_samples) continue;
+    b.bias_si = static_cast<double>(sum / static_cast<long double>(b.samples));
+    b.mean_temperature = static_cast<double>(sum_t / static_cast<long double>(b.samples));
+    long double sq = 0.0L;
+    for (const auto& s : segments) {
+      for (std::size_t i = s.begin; i < s.end; ++i) sq += (rate_si[i] - b.bias_si) * (rate_si[i] - b.bias_si);
+    }
+    b.bias_stderr_si = static_cast<double>(std::sqrt(sq / static_cast<long double>(b.samples - 1))) /
+                       std::sqrt(static_cast<double>(b.samples));
+    std::size_t longest = 0;
+    for (const auto& s : segments) longest = std::max(longest, s.size());
+    std::vector<std::size_t> factors;
+    for (std::size_t m = 1; 2 * m + 1 <= longest + 1; m *= 2) factors.push_back(m);
+    b.oadev = pooled_oadev(rate_si, segments, tau0, factors);
+    b.random_walk_si = std::numeric_limits<double>::quiet_NaN();
+    b.bias_instability_si = std::numeric_limits<double>::quiet_NaN();
+    double best = std::numeric_limits<double>::infinity();
+    double minimum = std::numeric_limits<double>::infinity();
+    for (const auto& p : b.oadev) {
+      const double distance = std::abs(std::log(p.tau_s));
+      if (distance < best) {
+        best = distance;
+        b.random_walk_si = p.dev * std::sqrt(p.tau_s);
+        b.random_walk_tau_s = p.tau_s;
+      }
+      minimum = std::min(minimum, p.dev);
+    }
+    // 0.664 = sqrt(2 ln 2 / pi): the flat floor of the Allan deviation of flicker rate noise.
+    if (std::isfinite(minimum)) b.bias_instability_si = minimum / 0.664;
+    out.push_back(std::move(b));
+  }
+  return out;
+}
+
+}  // namespace imunoise::preprocess
