@@ -12,9 +12,13 @@ packages=(
   libboost-dev libeigen3-dev libyaml-cpp-dev
   clang libclang-rt-14-dev
   python3-dev python3-numpy python3-pytest pybind11-dev
+  gnuplot-nox chromium fonts-dejavu-core
   libhdf5-dev libbz2-dev liblz4-dev libzstd-dev python3-h5py python3-rosbag python3-sensor-msgs
   libopenmpi-dev openmpi-bin
 )
+# The report's Plotly.js comes from npm (web/package-lock.json); Debian's npm only when none is
+# installed (a NodeSource node ships its own npm and conflicts with Debian's).
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 
 missing=()
 for p in "${packages[@]}"; do
@@ -29,6 +33,10 @@ if ((${#missing[@]})); then
 fi
 
 cd "$here"
+# Plotly.js for the interactive HTML report, pinned by web/package-lock.json.
+if [ ! -f web/node_modules/plotly.js-basic-dist-min/plotly-basic.min.js ]; then
+  (cd web && npm ci --no-audit --no-fund --loglevel=error)
+fi
 # The MCAP reader's tests write files with the reference TypeScript writer (node 20 + npm).
 if command -v npm >/dev/null; then (cd tests/io/mcap_writer && npm ci --no-audit --no-fund --loglevel=error); fi
 cmake --preset "$preset" >/dev/null

@@ -11,5 +11,7 @@ void setup_fit(CLI::App& app);
 void setup_nav(CLI::App& app);
 void setup_redundant(CLI::App& app);
 void setup_fleet(CLI::App& app);
+void setup_analyze(CLI::App& app);
+void setup_demo(CLI::App& app);
 
 }  // namespace imunoise::cli

@@ -3,6 +3,7 @@
 // Kalibr / Kalman-filter exports.
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,10 +18,12 @@
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
 #include "distributed_record.hpp"
+#include "imunoise/study/fit_stage.hpp"
 #include "input_options.hpp"
 #include "sensor_analysis.hpp"
 #include "output.hpp"
 #include "spec_exports.hpp"
+#include "study_record.hpp"
 
 namespace imunoise::cli {
 namespace {
@@ -44,90 +47,6 @@ struct FitOptionsCli {
   bool mpi = false;
 };
 
-std::string cell(double v) { return std::isfinite(v) ? fmt::format("{:.5g}", v) : "-"; }
-
-bool gyro(const PhaseRecord& record) {
-  return record.unit_given && record.rate_unit.quantity == Quantity::angular_rate;
-}
-
-std::string to_table(const PhaseRecord& record, const fit::FitOptions& options,
-                     const fit::FitResult& r) {
-  const double f = record.rate_unit.to_si;
-  const auto names = fit::coefficient_units(unit_label(record));
-  std::string out = fmt::format("# {}: {} samples at {:.9g} Hz; method {}, {:g}% intervals\n",
-                                record.source, record.n_samples, record.rate_hz,
-                                fit::method_name(options.method), 100 * options.level);
-  out += fmt::format("{:<4} {:>13} {:>13} {:>13} {:<18} {:>5}  {}\n", "term", "value", "ci_low",
-                     "ci_high", "unit", "ident", "customary");
-  for (int j = 0; j < fit::kTermCount; ++j) {
-    const auto& c = fit::coefficient(r.coefficients, j);
-    std::string cust;
-    if (gyro(record)) {
-      const auto& cu = fit::customary_unit(j);
-      cust = fmt::format("{} [{}, {}] {}", cell(c.value / cu.to_si), cell(c.ci_low / cu.to_si),
-                         cell(c.ci_high / cu.to_si), cu.name);
-    }
-    out += fmt::format("{:<4} {:>13} {:>13} {:>13} {:<18} {:>5}  {}\n", fit::term_name(j),
-                       cell(c.value / f), cell(c.ci_low / f), cell(c.ci_high / f),
-                       names[static_cast<std::size_t>(j)],
-                       c.identified ? "yes" : "no", cust);
-  }
-  auto extra_row = [&](const char* name, const Coefficient& c, double to_unit,
-                       const std::string& unit) {
-    std::string cust;
-    if (gyro(record) && unit == unit_label(record)) {
-      const auto& cu = customary_gyro_B;
-      cust = fmt::format("{} [{}, {}] {}", cell(c.value / cu.to_si), cell(c.ci_low / cu.to_si),
-                         cell(c.ci_high / cu.to_si), cu.name);
-    }
-    out += fmt::format("{:<4} {:>13} {:>13} {:>13} {:<18} {:>5}  {}\n", name,
-                       cell(c.value / to_unit), cell(c.ci_low / to_unit),
-                       cell(c.ci_high / to_unit), unit, c.identified ? "yes" : "no", cust);
-  };
-  if (const auto& gm = r.coefficients.gauss_markov) {
-    extra_row("GMs", gm->sigma, f, unit_label(record));
-    extra_row("GMt", gm->correlation_time_s, 1.0, "s");
-  }
-  if (const auto& sin = r.coefficients.sinusoid) {
-    extra_row("SINa", sin->amplitude, f, unit_label(record));
-    extra_row("SINf", sin->frequency_hz, 1.0, "Hz");
-  }
-  for (int j = 0; j < fit::kTermCount; ++j) {
-    const auto& c = fit::coefficient(r.coefficients, j);
-    if (!c.note.empty()) out += fmt::format("# {}: {}\n", fit::term_name(j), c.note);
-  }
-  if (r.extras.gauss_markov.requested) {
-    out += fmt::format("# GM (Gauss-Markov sigma GMs, correlation time GMt): {}\n",
-                       r.extras.gauss_markov.verdict);
-  }
-  if (r.extras.sinusoid.requested) {
-    out += fmt::format("# SIN (sinusoid amplitude SINa, frequency SINf): {}\n",
-                       r.extras.sinusoid.verdict);
-  }
-  const std::string eq12 =
-      r.tau_opt_s > 0.0
-          ? fmt::format("tau_opt = {:.6g} s, adev_min = {:.6g} {}", r.tau_opt_s,
-                        std::sqrt(r.avar_min_eq2) / f, unit_label(record))
-          : std::string("not available (they need both N and K identified)");
-  out += fmt::format("# paper eqs. 1-2: {}; measured minimum {:.6g} {} at tau = {:.6g} s\n", eq12,
-                     std::sqrt(r.avar_min_measured) / f, unit_label(record), r.tau_min_measured_s);
-  out += "# " + r.summary.BriefReport() + "\n";
-  for (const auto& w : r.summary.warnings) out += "# warning: " + w + "\n";
-  if (r.summary.mismatch_scatter > 0.0) {
-    out += fmt::format("# model mismatch: {:.3g}% scatter of sigma^2 per tau; chi2/dof with it {:.3g}\n",
-                       100 * r.summary.mismatch_scatter, r.summary.chi2_dof_with_mismatch);
-  }
-  out += fmt::format("{:>13} {:>13} {:>13} {:>9} {:>4}\n", "tau [s]", "adev", "model", "resid/sd",
-                     "term");
-  for (const auto& p : r.residuals) {
-    out += fmt::format("{:>13.6g} {:>13.6g} {:>13.6g} {:>9} {:>4}\n", p.tau_s,
-                       std::sqrt(p.avar) / f, std::sqrt(p.avar_model) / f,
-                       p.used ? fmt::format("{:+.2f}", p.normalized) : std::string("excluded"),
-                       p.dominant_term >= 0 ? fit::term_name(p.dominant_term) : "-");
-  }
-  return out;
-}
-
 void run_fit(FitOptionsCli& options) {
   if (options.format != "json" && options.format != "table") {
     throw InputError("unknown --format '" + options.format + "'; use json or table");
@@ -146,62 +65,53 @@ void run_fit(FitOptionsCli& options) {
   std::string why;
   if (!fo.IsValid(&why)) throw InputError("fit options: " + why);
 
-  PhaseRecord record;
-  std::vector<DevPoint> points;
-  std::size_t n_phase = 0;
-  std::vector<std::string> warnings;
+  PhaseRecord loaded;
+  std::optional<fit::FitResult> mpi_result;
   if (options.mpi) {
     // Each rank reads its slice; the oadev sums are merged in a tree (distributed_record.hpp).
     auto dist = distributed_deviations(options.input, {Estimator::oadev}, parse_tau_grid(options.taus));
     if (!dist.root) return;
-    record = std::move(dist.record);
-    points = std::move(dist.curves[0]);
-    n_phase = dist.n_phase;
     bool constant = true;
-    for (const auto& p : points) constant = constant && !(p.n > 0 && p.dev > 0.0);
+    for (const auto& p : dist.curves[0]) constant = constant && !(p.n > 0 && p.dev > 0.0);
     if (constant) {
-      throw InputError(record.source + ": the rate is constant (all-zero or a fixed value): there "
+      throw InputError(dist.record.source + ": the rate is constant (all-zero or a fixed value): there "
                        "is no noise to identify; check --column and the file");
     }
-    warnings.push_back("--mpi: the record checks (quantization, saturation, constant stretches) "
-                       "need the whole record in one place and were not run");
+    const std::vector<std::string> warnings{
+        "--mpi: the record checks (quantization, saturation, constant stretches) need the whole "
+        "record in one place and were not run"};
+    mpi_result = fit_curve(dist.record, dist.n_phase, dist.curves[0], warnings, fo).result;
+    loaded = std::move(dist.record);
   } else {
-    record = load_phase(options.input);
-    if (record.segments.size() > 1) {
-      throw InputError(record.source + ": fit needs one contiguous record, but --gaps split / --outliers reject "
-                       "split it into " + std::to_string(record.segments.size()) + " segments; fix: fit the longest "
+    loaded = load_phase(options.input);
+    if (loaded.segments.size() > 1) {
+      throw InputError(loaded.source + ": fit needs one contiguous record, but --gaps split / --outliers reject "
+                       "split it into " + std::to_string(loaded.segments.size()) + " segments; fix: fit the longest "
                        "gap-free stretch, or use --allow-gaps / --outliers report");
     }
-    const double tau0_s = 1.0 / record.rate_hz;
-    warnings = fit::record_warnings(record.phase_si, tau0_s);
-    if (fit::is_constant_record(record.phase_si, tau0_s)) {
-      throw InputError(record.source + ": the rate is constant (all-zero or a fixed value): there is "
-                       "no noise to identify; check --column and the file");
-    }
-    const auto factors = estimator_averaging_factors(Estimator::oadev, parse_tau_grid(options.taus),
-                                                     record.rate_hz, record.phase_si.size());
-    points = oadev(record.phase_si, tau0_s, factors);
-    n_phase = record.phase_si.size();
   }
-  FitOutcome outcome = fit_curve(record, n_phase, points, warnings, fo);
-  const fit::FitResult& result = outcome.result;
+  // to_study_record moves the samples, the source and the timing; the provenance stays here.
+  const study::Record record = to_study_record(std::move(loaded));
+  const fit::FitResult result =
+      mpi_result ? std::move(*mpi_result) : study::fit_channel(record, fo, parse_tau_grid(options.taus));
 
-  nlohmann::json json = std::move(outcome.json);
+  nlohmann::json json = fit::report_json(study::record_info(record), fo, result);
   options.spec.force = options.output.force;
   json["spec_comparison"] = run_spec_exports(options.spec, result.coefficients, record.rate_hz);
   // Where the record came from and what preprocessing removed (issue 16).
-  if (!record.channel.empty()) {
-    json["recording"] = {{"format", record.format}, {"stream", record.stream},
-                      {"channel", record.channel}};
+  if (!loaded.channel.empty()) {
+    json["recording"] = {{"format", loaded.format}, {"stream", loaded.stream},
+                      {"channel", loaded.channel}};
   }
-  if (!record.preprocessing.empty()) json["preprocessing"] = record.preprocessing;
+  if (!loaded.preprocessing.empty()) json["preprocessing"] = loaded.preprocessing;
   std::string preprocessing_lines;
-  for (const auto& line : record.preprocessing) preprocessing_lines += "# preprocessing: " + line + "\n";
+  for (const auto& line : loaded.preprocessing) preprocessing_lines += "# preprocessing: " + line + "\n";
   std::string text;
   if (options.format == "json") {
     text = json.dump(1) + "\n";
   } else {
-    text = preprocessing_lines + to_table(record, fo, result) + format_spec_table(json["spec_comparison"]);
+    text = preprocessing_lines + study::fit_table(record, fo, result) +
+           study::spec_table(json["spec_comparison"]);
     if (!text.empty() && text.back() != '\n') text += '\n';
   }
   write_output(options.output, text);

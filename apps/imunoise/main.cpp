@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
   imunoise::cli::setup_nav(app);
   imunoise::cli::setup_redundant(app);
   imunoise::cli::setup_fleet(app);
+  imunoise::cli::setup_analyze(app);
+  imunoise::cli::setup_demo(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -6,7 +6,9 @@
 #include "imunoise/spec/report.hpp"
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
+#include "imunoise/study/fit_stage.hpp"
 #include "spec_exports.hpp"
+#include "study_record.hpp"
 
 namespace imunoise::cli {
 
@@ -33,21 +35,14 @@ FitOutcome fit_curve(const PhaseRecord& record, std::size_t n_phase,
 }
 
 nlohmann::json analyze_sensor(const InputOptions& input, const SensorAnalysisOptions& options) {
-  const PhaseRecord record = load_phase(input);
-  const double tau0_s = 1.0 / record.rate_hz;
-  const auto warnings = fit::record_warnings(record.phase_si, tau0_s);
-  if (fit::is_constant_record(record.phase_si, tau0_s)) {
-    throw InputError(record.source + ": the rate is constant (all-zero or a fixed value): there is "
-                     "no noise to identify; check --column and the file");
-  }
-  const auto factors = estimator_averaging_factors(Estimator::oadev, parse_tau_grid(options.taus),
-                                                   record.rate_hz, record.phase_si.size());
-  const auto points = oadev(record.phase_si, tau0_s, factors);
-  FitOutcome out = fit_curve(record, record.phase_si.size(), points, warnings, options.fit);
+  // The study's fit stage (the same checks and fit as `fit` and `analyze`).
+  const study::Record record = to_study_record(load_phase(input));
+  const fit::FitResult result = study::fit_channel(record, options.fit, parse_tau_grid(options.taus));
+  nlohmann::json json = fit::report_json(study::record_info(record), options.fit, result);
   SpecExportOptions spec;
   spec.spec = options.spec;
-  out.json["spec_comparison"] = run_spec_exports(spec, out.result.coefficients, record.rate_hz);
-  return out.json;
+  json["spec_comparison"] = run_spec_exports(spec, result.coefficients, record.rate_hz);
+  return json;
 }
 
 }  // namespace imunoise::cli

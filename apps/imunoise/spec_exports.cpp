@@ -8,6 +8,7 @@
 #include "imunoise/error.hpp"
 #include "imunoise/spec/exports.hpp"
 #include "imunoise/spec/report.hpp"
+#include "imunoise/study/fit_stage.hpp"
 #include "output.hpp"
 
 namespace imunoise::cli {
@@ -50,43 +51,7 @@ void check_target(const std::string& option, const std::string& path, bool force
 }  // namespace
 
 
-std::string format_spec_table(const nlohmann::json& c) {
-  if (c.is_null()) return "";
-  const auto text = [](const nlohmann::json& v) {
-    if (!v.is_object() || v["value"].is_null()) return std::string("-");
-    return fmt::format("{:.4g} {}", v["value"].get<double>(), v["unit"].get<std::string>());
-  };
-  std::string out = fmt::format(
-      "datasheet comparison: {} ({}), {:g} % CI; pass if measured <= "
-      "spec x (1 + tolerance)\n",
-      c["spec"].get<std::string>(), c["source"].get<std::string>(),
-      100.0 * c["confidence_level"].get<double>());
-  out = fmt::format("{}{:<22} {:>24} {:>24} {:>22} {:>10} {:>10} {}\n", out, "term", "measured",
-                    "in spec unit", "spec", "deviation", "CI/limit", "verdict");
-  for (const auto& t : c["terms"]) {
-    std::string spec = "-";
-    if (t.contains("spec")) {
-      spec = text(t["spec"]);
-      if (t["spec"]["tolerance"].get<double>() != 0.0) {
-        spec += fmt::format(" +{:g}%", 100.0 * t["spec"]["tolerance"].get<double>());
-      }
-    }
-    const std::string deviation =
-        t["deviation_percent"].is_null()
-            ? std::string("-")
-            : fmt::format("{:+.1f} %", t["deviation_percent"].get<double>());
-    std::string verdict = t["verdict"].get<std::string>();
-    const bool judged = verdict == "pass" || verdict == "fail";
-    if (judged) verdict += t["conclusive"].get<bool>() ? " (conclusive)" : " (inconclusive)";
-    out += fmt::format(
-        "{:<22} {:>24} {:>24} {:>22} {:>10} {:>10} {}\n",
-        fmt::format("{} {}", t["symbol"].get<std::string>(), t["title"].get<std::string>()),
-        text(t["measured_customary"]),
-        t.contains("measured_in_spec_unit") ? text(t["measured_in_spec_unit"]) : "-", spec,
-        deviation, judged ? t["ci_vs_limit"].get<std::string>() : "-", verdict);
-  }
-  return out;
-}
+std::string format_spec_table(const nlohmann::json& c) { return study::spec_table(c); }
 
 std::string format_spec_table(const SpecComparison& comparison) {
   return format_spec_table(comparison_json(comparison));

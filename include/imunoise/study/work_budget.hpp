@@ -1,7 +1,7 @@
 #pragma once
 // Estimators whose cost grows as N m per tau (mtotdev, ttotdev, htotdev, theo1) would run for
 // hours at the longest taus of a long record; the command line keeps to a time budget instead
-// and says what it left out. Policy of the CLI, not of the library.
+// and says what it left out. A policy of the study (dev, analyze), kept apart from the estimators.
 #include <cstddef>
 #include <span>
 #include <string>
@@ -10,7 +10,7 @@
 #include "imunoise/estimator.hpp"
 #include "imunoise/theo.hpp"
 
-namespace imunoise::cli {
+namespace imunoise::study {
 
 /// Estimated wall time in seconds of one tau of `estimator` at factor m on n_phase phase points,
 /// calibrated on the project's 2-core 2.3 GHz build machine (docs/performance.md: mtotdev
@@ -38,4 +38,4 @@ BudgetSplit split_by_budget(Estimator estimator, std::size_t n_phase,
 /// "about 2.1 h", "about 40 min", "about 12 s".
 std::string duration_text(double seconds);
 
-}  // namespace imunoise::cli
+}  // namespace imunoise::study

@@ -1,10 +1,10 @@
-#include "work_budget.hpp"
+#include "imunoise/study/work_budget.hpp"
 
 #include <fmt/core.h>
 
 #include "imunoise/theo.hpp"
 
-namespace imunoise::cli {
+namespace imunoise::study {
 
 namespace {
 constexpr double kTheoSecondsPerTerm = 0.13e-9;
@@ -64,4 +64,4 @@ std::string duration_text(double seconds) {
   return fmt::format("about {:.0f} s", seconds);
 }
 
-}  // namespace imunoise::cli
+}  // namespace imunoise::study

@@ -1,0 +1,34 @@
+#pragma once
+// The fit stage of the study: one record -> the noise model with its checks (constant or
+// quantized records, saturation), and the fit's text table of `imunoise fit --format table`.
+// The fit's JSON is fit::report_json (imunoise/fit/report.hpp), the datasheet comparison's
+// comparison_json (imunoise/spec/report.hpp).
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "imunoise/fit/fit.hpp"
+#include "imunoise/fit/report.hpp"
+#include "imunoise/study/record.hpp"
+#include "imunoise/tau_grid.hpp"
+
+namespace imunoise::study {
+
+/// What the fit report says about the record.
+fit::RecordInfo record_info(const Record& record);
+
+/// oadev on `grid`, then fit::fit_allan, with the record's warnings first in
+/// summary.warnings and the quantity (gyro or accelerometer) set from the unit. Throws
+/// InputError naming the record when the rate is constant or no model can be fitted.
+fit::FitResult fit_channel(const Record& record, const fit::FitOptions& options,
+                           const TauGrid& grid = {});
+
+/// `imunoise fit --format table`: coefficients (record unit and customary), notes, eqs. 1-2,
+/// summary, warnings and the residual per tau.
+std::string fit_table(const Record& record, const fit::FitOptions& options,
+                      const fit::FitResult& result);
+
+/// The datasheet comparison (comparison_json) as a text table; "" for null.
+std::string spec_table(const nlohmann::json& comparison);
+
+}  // namespace imunoise::study

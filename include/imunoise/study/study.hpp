@@ -1,0 +1,94 @@
+#pragma once
+// The whole study of a set of recorded channels, in one call:
+//   curves (with confidence) -> noise-model fit -> datasheet comparison -> navigation error
+//   -> (redundant geometry given) fused axes and fault detection
+// and the one report document every output is rendered from (report.json as is; the HTML,
+// Markdown, CSV, Kalibr file and figures from it: render.hpp, write.hpp).
+//
+// Entry point for every caller (analyze, demo, Python, the fleet command): run_study().
+// Channels must share one sample rate, and channels of one quantity one unit (a mixed set
+// would put incomparable curves on one figure and cannot be fused); a channel whose stage
+// fails is kept with its error when keep_going is set, otherwise the InputError propagates.
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "imunoise/fit/fit.hpp"
+#include "imunoise/spec/comparison.hpp"
+#include "imunoise/spec/spec.hpp"
+#include "imunoise/study/curves.hpp"
+#include "imunoise/study/record.hpp"
+
+namespace imunoise::study {
+
+struct StudyOptions {
+  /// Curves to compute; the overlapping Allan deviation is always computed (the fit uses it)
+  /// and put first when missing.
+  CurveOptions curves;
+  fit::FitOptions fit;
+  TauGrid fit_grid;                ///< tau grid of the fitted oadev curve (octave)
+  std::optional<Spec> spec;        ///< datasheet to compare with
+  double nav_hours = 1.0;          ///< duration of the navigation-error curves (h)
+  double nav_latitude_deg = 58.5;  ///< latitude of the navigation model (the paper's site)
+  /// Navigation models (nav/navigation.hpp names): the paper's eq. 6, the Schuler closed forms
+  /// and the covariance propagation; montecarlo on request (slow).
+  std::string nav_models = "paper,schuler,covariance";
+  std::string geometry;            ///< redundant-unit geometry: tetra, 3+1, cone:N:DEG, file ("": none)
+  bool keep_going = false;         ///< a failing channel is reported, the others finish
+  double kalibr_inflation = 1.0;   ///< factor on the Kalibr values (> 0)
+  std::string kalibr_topic = "/imu0";
+  std::string title = "imunoise noise study";
+};
+
+/// A stage of work, for progress display: what is being done and how far the study is (0..1).
+using Progress = std::function<void(std::string_view what, double fraction)>;
+
+/// An input that could not be read (kept so the report names it).
+struct FailedInput {
+  std::string source;
+  std::string error;
+};
+
+struct ChannelStudy {
+  Record record;                    ///< samples released after the study (phase_si empty)
+  std::vector<Curve> curves;
+  std::optional<fit::FitResult> fit;
+  std::optional<SpecComparison> comparison;
+  nlohmann::json nav;               ///< navigation-error curves (null: not computed, see notes)
+  std::string error;                ///< non-empty: this channel failed (keep_going)
+  std::vector<std::string> warnings;
+};
+
+struct Study {
+  StudyOptions options;
+  std::vector<ChannelStudy> channels;
+  std::vector<FailedInput> failed_inputs;
+  nlohmann::json redundant;         ///< the unit's analysis, redundant/report.hpp (null: no geometry)
+  std::vector<Curve> fused_curves;  ///< oadev of the fused body axes x, y, z (from the samples)
+  Record fused_record;              ///< rate and unit of the fused axes (no samples kept)
+  std::vector<std::string> notes;   ///< study-level remarks (stages not available, ...)
+};
+
+/// Checks that the channels can be studied together (rate and units); InputError naming the
+/// two channels and the fix otherwise.
+void check_compatible(const std::vector<Record>& records);
+
+/// Runs every stage on every record. `failed` lists inputs the caller could not read (kept in
+/// the report). Throws InputError for bad options or, without keep_going, a failing channel.
+Study run_study(std::vector<Record> records, const StudyOptions& options,
+                std::vector<FailedInput> failed = {}, const Progress& progress = {});
+
+/// The report document: {"title", "version", "inputs", "options", "channels": [{"name",
+/// "source", "unit", "quantity", "rate_hz", "n_samples", "duration_s", "curves": [dev JSON],
+/// "fit": {fit JSON}, "model": {...}, "spec_comparison", "spec_limits", "nav"}], "redundant",
+/// "kalibr", "figures", "notes"}. Every number states its unit (in its key or a "unit" field).
+nlohmann::json study_json(const Study& study);
+
+/// The library version written into reports.
+std::string_view version();
+
+}  // namespace imunoise::study

@@ -1,0 +1,36 @@
+#pragma once
+// Writes a study's report directory: report.json (the document), report.html, report.md, CSV
+// tables, the Kalibr imu.yaml and every figure as SVG and PNG (gnuplot). Nothing the user has
+// is replaced without `force`; everything is written under a staging name inside DIR and
+// renamed into place at the end (report.html and report.json last), so an interrupted run
+// never leaves a report that looks complete.
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace imunoise::study {
+
+struct WriteOptions {
+  bool force = false;          ///< replace existing report files
+  std::string plotly_js_path;  ///< plotly-basic.min.js ("": find_plotly_js())
+  std::string gnuplot = "gnuplot";  ///< gnuplot executable ("": no static figures)
+};
+
+struct WrittenReport {
+  std::string dir;
+  std::vector<std::string> files;   ///< paths written, relative to dir
+  std::vector<std::string> notes;   ///< what was left out and why (no gnuplot, no Plotly)
+  bool interactive = false;         ///< report.html has the Plotly figures
+};
+
+/// Where Plotly.js is: $IMUNOISE_PLOTLY_JS, else the repository's web/node_modules (npm ci in
+/// web/), else the installed share/imunoise copy; "" when none exists.
+std::string find_plotly_js();
+
+/// Writes the report of `doc` (study_json) into `dir` (created when missing). InputError when
+/// DIR cannot be created or written, or a report file exists without force (naming it).
+WrittenReport write_report(const nlohmann::json& doc, const std::string& dir,
+                           const WriteOptions& options = {});
+
+}  // namespace imunoise::study

@@ -1,0 +1,18 @@
+#include "imunoise/study/record.hpp"
+
+namespace imunoise::study {
+
+std::string unit_label(const Record& record, bool integrated) {
+  if (!record.unit_given) {
+    const bool angle = record.kind == InputKind::angle;
+    if (integrated) return angle ? "input unit" : "input unit*s";
+    return angle ? "input unit/s" : "input unit";
+  }
+  return integrated ? integral_unit(record.rate_unit).name : record.rate_unit.name;
+}
+
+bool is_gyro(const Record& record) {
+  return record.unit_given && record.rate_unit.quantity == Quantity::angular_rate;
+}
+
+}  // namespace imunoise::study

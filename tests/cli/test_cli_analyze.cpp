@@ -1,0 +1,146 @@
+// imunoise analyze / demo as a user runs them: the report directory, bad inputs among good
+// ones (--keep-going), inputs that cannot be studied together, and a DIR that cannot be used.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <random>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_runner.hpp"
+
+namespace imunoise::test {
+namespace {
+
+// A white-noise gyro record in deg/s: `n` rows "t,gx,gy" at `rate` Hz.
+std::string csv_record(std::size_t n, double rate, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, 0.01);
+  std::string text = "t,gx,gy\n";
+  for (std::size_t i = 0; i < n; ++i) {
+    text += std::to_string(static_cast<double>(i) / rate) + "," + std::to_string(normal(rng)) +
+            "," + std::to_string(normal(rng)) + "\n";
+  }
+  return text;
+}
+
+TEST(CliAnalyze, WritesTheReportOfEveryColumn) {
+  TempDir dir;
+  const auto file = dir.write("imu.csv", csv_record(20000, 100.0, 1));
+  const auto out = dir.file("report");
+  const auto r = run_cli({"analyze", file, "--time-column", "t", "--units", "deg/s", "--spec",
+                          "tg100", "-o", out, "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.out.find("report: " + out + "/report.html"), std::string::npos) << r.out;
+  const auto doc = nlohmann::json::parse(slurp(out + "/report.json"));
+  ASSERT_EQ(doc["channels"].size(), 2u);
+  EXPECT_EQ(doc["channels"][0]["name"], "gx");
+  EXPECT_EQ(doc["channels"][1]["name"], "gy");
+  EXPECT_EQ(doc["channels"][0]["unit"], "deg/s");
+  EXPECT_FALSE(doc["channels"][0]["fit"].is_null());
+  // The same record through `fit` gives the same fit document.
+  const auto fit = run_cli({"fit", file, "--time-column", "t", "--column", "gx", "--units", "deg/s"});
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  const auto fit_doc = nlohmann::json::parse(fit.out);
+  EXPECT_EQ(doc["channels"][0]["fit"]["terms"], fit_doc["terms"]);
+  // Nothing on stderr with --quiet and a clean record but possible fit warnings: no progress.
+  EXPECT_EQ(r.err.find("%]"), std::string::npos) << r.err;
+  // An existing report is not replaced without --force.
+  const auto again = run_cli({"analyze", file, "--time-column", "t", "--units", "deg/s", "-o", out});
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
+  const auto forced = run_cli({"analyze", file, "--time-column", "t", "--units", "deg/s", "-o",
+                               out, "--force", "--quiet"});
+  EXPECT_EQ(forced.exit_code, 0) << forced.err;
+}
+
+TEST(CliAnalyze, BrokenFileAmongGoodOnesIsNamedAndKeepGoingFinishesTheOthers) {
+  TempDir dir;
+  const auto good1 = dir.write("a.csv", csv_record(8000, 100.0, 2));
+  const auto good2 = dir.write("b.csv", csv_record(8000, 100.0, 3));
+  const auto bad = dir.write("broken.csv", "t,gx,gy\n0,1,2\n0.01,x,3\n");
+  const auto out = dir.file("report");
+  const std::vector<std::string> common{"--time-column", "t", "--columns", "gx", "--units",
+                                        "deg/s", "-o", out, "--quiet"};
+  auto args = std::vector<std::string>{"analyze", good1, bad, good2};
+  args.insert(args.end(), common.begin(), common.end());
+  const auto r = run_cli(args);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("broken.csv"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--keep-going"), std::string::npos) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(out + "/report.json"));
+  args.push_back("--keep-going");
+  const auto k = run_cli(args);
+  ASSERT_EQ(k.exit_code, 0) << k.err;
+  EXPECT_NE(k.err.find("broken.csv"), std::string::npos) << k.err;
+  const auto doc = nlohmann::json::parse(slurp(out + "/report.json"));
+  ASSERT_EQ(doc["channels"].size(), 2u);
+  bool named = false;
+  for (const auto& in : doc["inputs"]) {
+    named = named || (in["status"] == "unreadable" &&
+                      in["source"].get<std::string>().find("broken.csv") != std::string::npos);
+  }
+  EXPECT_TRUE(named);
+}
+
+TEST(CliAnalyze, MismatchedRatesAndUnitsAreRefused) {
+  TempDir dir;
+  const auto a = dir.write("a.csv", csv_record(5000, 100.0, 4));
+  const auto b = dir.write("b.csv", csv_record(5000, 200.0, 5));
+  const auto rates = run_cli({"analyze", a, b, "--time-column", "t", "--columns", "gx", "--units",
+                              "deg/s", "-o", dir.file("r1"), "--quiet"});
+  EXPECT_EQ(rates.exit_code, 1);
+  EXPECT_NE(rates.err.find("200 Hz"), std::string::npos) << rates.err;
+  const auto units = run_cli({"analyze", a, "--time-column", "t", "--units", "deg/s,rad/s", "-o",
+                              dir.file("r2"), "--quiet"});
+  EXPECT_EQ(units.exit_code, 1);
+  EXPECT_NE(units.err.find("rad/s"), std::string::npos) << units.err;
+  const auto count = run_cli({"analyze", a, "--time-column", "t", "--units", "deg/s,deg/s,deg/s",
+                              "-o", dir.file("r3"), "--quiet"});
+  EXPECT_EQ(count.exit_code, 1);
+  EXPECT_NE(count.err.find("3 units for 2 channels"), std::string::npos) << count.err;
+}
+
+TEST(CliAnalyze, UnusableDirectoryIsAnError) {
+  TempDir dir;
+  const auto a = dir.write("a.csv", csv_record(5000, 100.0, 6));
+  const auto file = dir.write("not-a-dir", "x");
+  const auto r = run_cli({"analyze", a, "--time-column", "t", "--units", "deg/s", "-o", file, "--quiet"});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("not a directory"), std::string::npos) << r.err;
+  const auto r2 = run_cli({"analyze", a, "--time-column", "t", "--units", "deg/s", "-o",
+                           file + "/sub", "--quiet"});
+  EXPECT_EQ(r2.exit_code, 1);
+  EXPECT_NE(r2.err.find("cannot create"), std::string::npos) << r2.err;
+}
+
+}  // namespace
+}  // namespace imunoise::test
+
+namespace imunoise::test {
+namespace {
+
+// The demo on a short record (the 6-hour run is SlowDemo in tests/study): the summary on
+// stdout, the report in DIR, no progress when stderr is not a terminal, no overwrite.
+TEST(CliDemo, PrintsTheSummaryAndWritesTheReport) {
+  TempDir dir;
+  const auto out = dir.file("demo");
+  const auto r = run_cli({"demo", "--hours", "0.25", "-o", out});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* text : {"Table 2", "gyro1  N", "Datasheet comparison", "Navigation error after 1 h",
+                           "why they differ", "report: "}) {
+    EXPECT_NE(r.out.find(text), std::string::npos) << text << "\n" << r.out;
+  }
+  EXPECT_EQ(r.err.find("%]"), std::string::npos) << "progress on a non-terminal stderr: " << r.err;
+  const auto doc = nlohmann::json::parse(slurp(out + "/report.json"));
+  EXPECT_EQ(doc["channels"].size(), 4u);
+  EXPECT_FALSE(doc["redundant"].is_null());
+  EXPECT_EQ(doc["reference"]["rows"].size(), 16u);
+  const auto again = run_cli({"demo", "--hours", "0.25", "-o", out});
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
+}
+
+}  // namespace
+}  // namespace imunoise::test
