@@ -203,6 +203,9 @@ nlohmann::json report_json(const Analysis& a, const Unit& unit, const DetectionR
     j["tests"] = detection->tests;
     j["alarms"] = detection->alarms;
     j["max_statistic"] = number(detection->max_statistic);
+    nlohmann::json excluded = nlohmann::json::array();
+    for (const auto i : detection->excluded) excluded.push_back(i + 1);
+    j["excluded_sensors"] = excluded;
     j["detection"]["window_samples"] = detection->window_samples;
     j["detection"]["rate_hz"] = detection->rate_hz;
   }
