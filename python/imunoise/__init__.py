@@ -8,10 +8,14 @@ Deviations are in the unit of the rate; taus in seconds.
 ``imunoise.fit(rate_samples, rate_hz, units="deg/s")`` returns the noise-model fit (Q, N, B, K,
 R with 95 % intervals and verdicts) as a dict, the document of ``imunoise fit --format json``;
 ``imunoise.simulate(...)`` makes records with known noise.
+
+``imunoise.redundant(geometry, fits)`` analyses a redundant gyro unit and
+``imunoise.fuse(records, geometry, rate, units=...)`` fuses its records (docs/redundant.md).
 """
 from ._imunoise import InputError, deviation, fit, simulate, simulate_preset
+from ._imunoise import fuse, redundant
 
-__all__ = ["InputError", "deviation", "fit", "simulate", "simulate_preset", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev",
+__all__ = ["InputError", "deviation", "fit", "simulate", "simulate_preset", "redundant", "fuse", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev",
            "totdev", "mtotdev", "ttotdev", "htotdev", "theo1", "theobr", "mtie",
            "tierms"]
 

@@ -7,6 +7,7 @@ namespace imunoise::python {
 void register_deviation(py::module_& m);
 void register_simulate(py::module_& m);
 void register_fit(py::module_& m);
+void register_redundant(py::module_& m);
 }
 
 PYBIND11_MODULE(_imunoise, m) {
@@ -14,4 +15,5 @@ PYBIND11_MODULE(_imunoise, m) {
   imunoise::python::register_deviation(m);
   imunoise::python::register_simulate(m);
   imunoise::python::register_fit(m);
+  imunoise::python::register_redundant(m);
 }
