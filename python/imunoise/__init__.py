@@ -10,7 +10,7 @@ R with 95 % intervals and verdicts) as a dict, the document of ``imunoise fit --
 ``imunoise.simulate(...)`` makes records with known noise.
 
 ``imunoise.redundant(geometry, fits)`` analyses a redundant gyro unit and
-``imunoise.fuse(records, geometry, rate, units=...)`` fuses its records (docs/redundant.md).
+``imunoise.fuse(records, geometry, rate=..., units=...)`` fuses its records (docs/redundant.md).
 """
 from ._imunoise import InputError, deviation, fit, simulate, simulate_preset
 from ._imunoise import fuse, redundant

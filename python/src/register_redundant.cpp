@@ -71,8 +71,10 @@ redundant::DetectionOptions detection_options(double window_s, double reference_
   return o;
 }
 
+// Without units or fits the numbers are used as given (fusion is linear) and labelled
+// "input unit".
 Unit resolve_unit(const std::string& units, const Unit& from_fits, bool have_fits) {
-  if (units.empty()) return have_fits ? from_fits : Unit{"rad/s", Quantity::angular_rate, 1.0};
+  if (units.empty()) return have_fits ? from_fits : Unit{"input unit", Quantity::angular_rate, 1.0};
   const Unit u = parse_unit(units);
   if (u.quantity != Quantity::angular_rate) throw InputError("units '" + units + "' is not an angular rate (e.g. deg/s)");
   if (have_fits && from_fits.name != "input unit" && from_fits.name != u.name) {
@@ -117,7 +119,6 @@ py::dict fuse(const py::object& records, const std::string& geometry, double rat
   Unit fit_unit;
   auto models = models_of(fits, fit_unit);
   const Unit unit = resolve_unit(units, fit_unit, !models.empty());
-  if (units.empty() && models.empty()) throw InputError("pass units='deg/s' (the unit of the records)");
   std::vector<std::vector<double>> si;
   for (std::size_t i = 0; i < arrays.size(); ++i) {
     const auto& a = arrays[i];

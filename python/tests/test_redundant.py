@@ -59,5 +59,13 @@ def test_bad_input_raises_value_error():
         imunoise.fuse([np.zeros(10)] * 3, "tetra", rate=10.0, units="deg/s")
     with pytest.raises(ValueError, match="not finite"):
         imunoise.fuse([np.array([0.0, np.nan])] * 4, "tetra", rate=10.0, units="deg/s")
-    with pytest.raises(ValueError, match="units"):
-        imunoise.fuse([np.zeros(10)] * 4, "tetra", rate=10.0)
+    with pytest.raises(ValueError, match="not an angular rate"):
+        imunoise.fuse([np.zeros(10)] * 4, "tetra", rate=10.0, units="m/s^2")
+
+
+def test_fuse_without_units_keeps_the_numbers():
+    h = np.array(imunoise.redundant("3+1")["H"])
+    w = np.array([1.0, 2.0, 3.0])
+    out = imunoise.fuse(np.tile(h @ w, (5, 1)).T, "3+1")
+    assert out["unit"] == "input unit"
+    assert np.allclose(out["x"], 1.0) and np.allclose(out["z"], 3.0) and np.allclose(out["parity"][0], 0.0)
