@@ -211,6 +211,12 @@ nlohmann::json report_json(const Analysis& a, const Unit& unit, const DetectionR
   }
   nlohmann::json notes = a.geometry.notes;
   for (const auto& n : a.notes) notes.push_back(n);
+  if (detection && detection->tests == 0 && detection->design.dof > 0) {
+    notes.push_back(fmt::format("no detection test was made: the record ({:.6g} s) is shorter than "
+                                "the reference plus one window ({:.6g} s); shorten --reference",
+                                static_cast<double>(detection->samples) / detection->rate_hz,
+                                detection->design.reference_s + detection->design.window_s));
+  }
   j["notes"] = notes;
   return j;
 }
