@@ -248,6 +248,9 @@ void run_redundant(RedundantOptionsCli& o) {
   const std::size_t n = geometry.size();
   std::string why;
   if (!o.detection.IsValid(&why)) throw InputError("detection options: " + why);
+  if (!std::isfinite(o.scale) || o.scale == 0.0) {
+    throw InputError(fmt::format("--scale must be finite and non-zero, got {}", o.scale));
+  }
 
   Unit unit{"rad/s", Quantity::angular_rate, 1.0};
   std::vector<redundant::SensorModel> models;

@@ -149,6 +149,8 @@ TEST(CliRedundant, BadInputExitsOneNamingTheProblem) {
   expect_error({"redundant", "--geometry", "tetra", "--fuse", a, b, c, a}, "--units");
   expect_error({"redundant", "--geometry", "tetra", "--from", dir.write("x.json", "{}"), a, b, c}, "x.json: not a fit document");
   expect_error({"redundant", "--geometry", "3+1", "--detect"}, "--fuse");
+  expect_error({"redundant", "--geometry", "tetra", "--fuse", a, b, c, a, "--units", "deg/s", "--scale", "0"}, "--scale");
+  expect_error({"redundant", "--geometry", "tetra", "--false-alarm-rate", "-1"}, "false_alarm_per_hour");
 }
 
 }  // namespace
