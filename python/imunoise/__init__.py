@@ -11,12 +11,15 @@ R with 95 % intervals and verdicts) as a dict, the document of ``imunoise fit --
 
 ``import imunoise.allantools as allantools`` is a drop-in for the AllanTools package (its
 conventions, helpers and return types; docs/allantools.md); the functions here keep imunoise's
-Stable32 conventions.
+Stable32 conventions. ``imunoise.nav(...)`` gives the navigation error growth (docs/navigation.md).
+``imunoise.redundant(geometry, fits)`` analyses a redundant gyro unit and
+``imunoise.fuse(records, geometry, rate=..., units=...)`` fuses its records (docs/redundant.md).
 """
 from ._imunoise import InputError, deviation, fit, simulate, simulate_preset
 from ._imunoise import nav
+from ._imunoise import fuse, redundant
 
-__all__ = ["InputError", "deviation", "fit", "simulate", "simulate_preset", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev",
+__all__ = ["InputError", "deviation", "fit", "simulate", "simulate_preset", "redundant", "fuse", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev",
            "totdev", "mtotdev", "ttotdev", "htotdev", "theo1", "theobr", "mtie",
            "tierms"]
 __all__ += ["nav"]  # navigation error growth (register_nav.cpp)

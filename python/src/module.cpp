@@ -9,6 +9,7 @@ void register_simulate(py::module_& m);
 void register_fit(py::module_& m);
 void register_nav(py::module_& m);
 void register_allantools(py::module_& m);
+void register_redundant(py::module_& m);
 }
 
 PYBIND11_MODULE(_imunoise, m) {
@@ -18,4 +19,5 @@ PYBIND11_MODULE(_imunoise, m) {
   imunoise::python::register_fit(m);
   imunoise::python::register_nav(m);
   imunoise::python::register_allantools(m);
+  imunoise::python::register_redundant(m);
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include <boost/math/distributions/chi_squared.hpp>
 #include <fmt/core.h>
 
 #include "imunoise/error.hpp"
@@ -42,27 +43,73 @@ FaultDetector::FaultDetector(const Geometry& geometry, std::span<const SensorMod
   result_.design = design_detection(geometry, sensors, used);
   result_.rate_hz = rate_hz;
   k_ = result_.design.dof;
+  threshold_ = result_.design.threshold;
+  exclude_isolated_ = options.exclude_isolated;
   const Matrix& vw = result_.design.whitened_parity;
   vw_ = vw.values;
   for (const double s : result_.design.sigma_difference_rad_s) inv_sigma_.push_back(1.0 / s);
-  // Isolable: no zero and no two parallel whitened parity columns.
+  sigma_ = result_.design.sigma_difference_rad_s;
+  axes_ = geometry.axes;
+  active_.assign(n_, true);
+  update_isolable();
+  block_acc_.assign(n_, 0.0);
+  blocks_.assign(2 * blocks_per_window_ * n_, 0.0);
+  windows_.assign((result_.reference_windows + 1) * n_, 0.0);
+}
+
+void FaultDetector::update_isolable() {
+  // Isolable: at least 2 parity rows and no zero and no two parallel columns among the sensors
+  // still monitored.
   isolable_ = k_ >= 2;
+  auto col = [&](std::size_t r, std::size_t i) { return vw_[r * n_ + i]; };
   for (std::size_t i = 0; i < n_ && isolable_; ++i) {
+    if (!active_[i]) continue;
     double ii = 0;
-    for (std::size_t r = 0; r < k_; ++r) ii += vw(r, i) * vw(r, i);
+    for (std::size_t r = 0; r < k_; ++r) ii += col(r, i) * col(r, i);
     if (ii < 1e-18) isolable_ = false;
     for (std::size_t j = i + 1; j < n_ && isolable_; ++j) {
+      if (!active_[j]) continue;
       double ij = 0, jj = 0;
       for (std::size_t r = 0; r < k_; ++r) {
-        ij += vw(r, i) * vw(r, j);
-        jj += vw(r, j) * vw(r, j);
+        ij += col(r, i) * col(r, j);
+        jj += col(r, j) * col(r, j);
       }
       if (std::abs(ij) > (1.0 - 1e-9) * std::sqrt(ii * jj)) isolable_ = false;
     }
   }
-  block_acc_.assign(n_, 0.0);
-  blocks_.assign(2 * blocks_per_window_ * n_, 0.0);
-  windows_.assign((result_.reference_windows + 1) * n_, 0.0);
+}
+
+void FaultDetector::exclude(std::size_t sensor) {
+  // The isolated sensor leaves the test: parity of the others (whitened), one degree of
+  // freedom less, threshold at the same per-test probability. Its column becomes zero.
+  active_[sensor] = false;
+  result_.excluded.push_back(sensor);
+  std::vector<std::size_t> keep;
+  for (std::size_t i = 0; i < n_; ++i) if (active_[i]) keep.push_back(i);
+  Matrix hw(keep.size(), 3);
+  for (std::size_t r = 0; r < keep.size(); ++r) {
+    for (std::size_t c = 0; c < 3; ++c) hw(r, c) = axes_[keep[r]][c] / sigma_[keep[r]];
+  }
+  k_ = keep.size() > 3 ? keep.size() - 3 : 0;
+  // The others must still span 3-D (else they have no parity space left to test).
+  double m[3][3] = {};
+  for (std::size_t r = 0; r < hw.rows; ++r) {
+    for (int a = 0; a < 3; ++a) for (int b = 0; b < 3; ++b) m[a][b] += hw(r, static_cast<std::size_t>(a)) * hw(r, static_cast<std::size_t>(b));
+  }
+  const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                     m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+  const double trace = m[0][0] + m[1][1] + m[2][2];
+  if (!(det > 1e-12 * trace * trace * trace)) k_ = 0;
+  vw_.assign(k_ * n_, 0.0);
+  if (k_ > 0) {
+    const Matrix v = parity_basis(hw);
+    for (std::size_t r = 0; r < k_; ++r) {
+      for (std::size_t j = 0; j < keep.size(); ++j) vw_[r * n_ + keep[j]] = v(r, j);
+    }
+    const boost::math::chi_squared_distribution<double> chi2(static_cast<double>(k_));
+    threshold_ = boost::math::quantile(boost::math::complement(chi2, result_.design.per_test_probability));
+  }
+  update_isolable();
 }
 
 void FaultDetector::push(std::span<const std::span<const double>> sensors) {
@@ -133,15 +180,17 @@ void FaultDetector::test() {
     for (std::size_t i = 0; i < n_; ++i) p[r] += vw_[r * n_ + i] * z[i];
     stat += p[r] * p[r];
   }
+  if (k_ == 0) return;  // every redundant sensor excluded: nothing left to test
   ++result_.tests;
   result_.max_statistic = std::max(result_.max_statistic, stat);
   const std::size_t test_index = result_.tests;
-  if (!(stat > result_.design.threshold)) return;
+  if (!(stat > threshold_)) return;
   ++result_.alarms;
   // Isolation: the sensor whose parity column best explains p.
   std::size_t best = 0;
   double best_score = -1.0;
   for (std::size_t i = 0; i < n_; ++i) {
+    if (!active_[i]) continue;
     double dot = 0, norm = 0;
     for (std::size_t r = 0; r < k_; ++r) {
       dot += vw_[r * n_ + i] * p[r];
@@ -154,7 +203,7 @@ void FaultDetector::test() {
     }
   }
   if (open_ && test_index - last_alarm_test_ <= R + 1 &&
-      (!isolable_ || result_.faults.back().sensor == best)) {
+      (!result_.faults.back().isolated || result_.faults.back().sensor == best)) {
     auto& e = result_.faults.back();
     ++e.alarms;
     e.max_statistic = std::max(e.max_statistic, stat);
@@ -204,11 +253,12 @@ void FaultDetector::test() {
   e.isolated = isolable_;
   e.statistic = stat;
   e.max_statistic = stat;
-  e.threshold = result_.design.threshold;
+  e.threshold = threshold_;
   e.alarms = 1;
   result_.faults.push_back(e);
   open_ = true;
   last_alarm_test_ = test_index;
+  if (isolable_ && exclude_isolated_) exclude(best);
 }
 
 }  // namespace imunoise::redundant

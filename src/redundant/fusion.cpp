@@ -43,8 +43,9 @@ void apply_rows(const Matrix& m, std::span<const std::span<const double>> sensor
   }
 }
 
-FusedRecord fuse_records(const Analysis& analysis, std::span<const std::span<const double>> sensors,
-                         double rate_hz, const FusionOptions& options) {
+namespace {
+
+void check_records(const Analysis& analysis, std::span<const std::span<const double>> sensors, double rate_hz) {
   const std::size_t n = analysis.geometry.size();
   if (sensors.size() != n) {
     throw InputError(fmt::format("{} recordings for the {} sensors of geometry {}: give one per "
@@ -61,15 +62,26 @@ FusedRecord fuse_records(const Analysis& analysis, std::span<const std::span<con
   if (!(rate_hz > 0) || !std::isfinite(rate_hz)) {
     throw InputError(fmt::format("the sample rate must be positive and finite, got {} Hz", rate_hz));
   }
-  FusedRecord out;
-  out.rate_hz = rate_hz;
-  out.samples = len;
+}
+
+}  // namespace
+
+std::optional<DetectionResult> fuse_into(const Analysis& analysis,
+                                         std::span<const std::span<const double>> sensors,
+                                         double rate_hz, const FusionOptions& options,
+                                         std::span<const std::span<double>> axes_out,
+                                         std::span<const std::span<double>> parity_out) {
+  check_records(analysis, sensors, rate_hz);
+  const std::size_t len = sensors[0].size();
+  if (axes_out.size() != 3 || (!parity_out.empty() && parity_out.size() != analysis.parity.rows)) {
+    throw InputError(fmt::format("fuse_into: 3 axis outputs and 0 or {} parity outputs, got {} and {}",
+                                 analysis.parity.rows, axes_out.size(), parity_out.size()));
+  }
+  for (const auto& o : axes_out) if (o.size() != len) throw InputError("fuse_into: an output's length differs from the records'");
+  for (const auto& o : parity_out) if (o.size() != len) throw InputError("fuse_into: an output's length differs from the records'");
   std::optional<FaultDetector> detector;
   if (options.detect) detector.emplace(analysis.geometry, analysis.sensors, rate_hz, options.detection);
-
-  for (auto& a : out.axes_rad_s) a.resize(len);
-  const std::size_t k = options.parity ? analysis.parity.rows : 0;
-  out.parity_rad_s.assign(k, std::vector<double>(len));
+  const std::size_t k = parity_out.size();
 
   // Time slices fused in parallel; detection (sequential by nature, n additions a sample) runs
   // on its own thread meanwhile.
@@ -78,11 +90,11 @@ FusedRecord fuse_records(const Analysis& analysis, std::span<const std::span<con
     std::vector<std::span<const double>> in;
     for (const auto& s : sensors) in.push_back(s.subspan(t0, t1 - t0));
     std::vector<std::span<double>> axes;
-    for (auto& a : out.axes_rad_s) axes.emplace_back(a.data() + t0, t1 - t0);
+    for (const auto& a : axes_out) axes.push_back(a.subspan(t0, t1 - t0));
     apply_rows(analysis.fusion, in, axes);
     if (k) {
       std::vector<std::span<double>> par;
-      for (auto& p : out.parity_rad_s) par.emplace_back(p.data() + t0, t1 - t0);
+      for (const auto& p : parity_out) par.push_back(p.subspan(t0, t1 - t0));
       apply_rows(analysis.parity, in, par);
     }
   };
@@ -107,7 +119,24 @@ FusedRecord fuse_records(const Analysis& analysis, std::span<const std::span<con
   if (detector && threads == 1) detector->push(sensors);
   for (auto& w : workers) w.join();
   if (detector_error) std::rethrow_exception(detector_error);
-  if (detector) out.detection = detector->result();
+  if (detector) return detector->result();
+  return std::nullopt;
+}
+
+FusedRecord fuse_records(const Analysis& analysis, std::span<const std::span<const double>> sensors,
+                         double rate_hz, const FusionOptions& options) {
+  check_records(analysis, sensors, rate_hz);
+  const std::size_t len = sensors[0].size();
+  FusedRecord out;
+  out.rate_hz = rate_hz;
+  out.samples = len;
+  for (auto& a : out.axes_rad_s) a.resize(len);
+  const std::size_t k = options.parity ? analysis.parity.rows : 0;
+  out.parity_rad_s.assign(k, std::vector<double>(len));
+  std::vector<std::span<double>> axes, parity;
+  for (auto& a : out.axes_rad_s) axes.emplace_back(a);
+  for (auto& p : out.parity_rad_s) parity.emplace_back(p);
+  out.detection = fuse_into(analysis, sensors, rate_hz, options, axes, parity);
   return out;
 }
 

@@ -211,7 +211,9 @@ Geometry cone_geometry(std::size_t n, double half_angle_deg) {
   std::vector<Axis> axes;
   for (std::size_t i = 0; i < n; ++i) {
     const double az = 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(n);
-    axes.push_back({std::sin(a) * std::cos(az), std::sin(a) * std::sin(az), std::cos(a)});
+    Axis h{std::sin(a) * std::cos(az), std::sin(a) * std::sin(az), std::cos(a)};
+    for (auto& c : h) c = std::abs(c) < 1e-15 ? 0.0 : c;  // cos 90 deg is 6e-17, not 0
+    axes.push_back(h);
   }
   return geometry_from_axes(fmt::format("cone:{}:{:g}", n, half_angle_deg), std::move(axes));
 }

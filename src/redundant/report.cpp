@@ -203,11 +203,20 @@ nlohmann::json report_json(const Analysis& a, const Unit& unit, const DetectionR
     j["tests"] = detection->tests;
     j["alarms"] = detection->alarms;
     j["max_statistic"] = number(detection->max_statistic);
+    nlohmann::json excluded = nlohmann::json::array();
+    for (const auto i : detection->excluded) excluded.push_back(i + 1);
+    j["excluded_sensors"] = excluded;
     j["detection"]["window_samples"] = detection->window_samples;
     j["detection"]["rate_hz"] = detection->rate_hz;
   }
   nlohmann::json notes = a.geometry.notes;
   for (const auto& n : a.notes) notes.push_back(n);
+  if (detection && detection->tests == 0 && detection->design.dof > 0) {
+    notes.push_back(fmt::format("no detection test was made: the record ({:.6g} s) is shorter than "
+                                "the reference plus one window ({:.6g} s); shorten --reference",
+                                static_cast<double>(detection->samples) / detection->rate_hz,
+                                detection->design.reference_s + detection->design.window_s));
+  }
   j["notes"] = notes;
   return j;
 }

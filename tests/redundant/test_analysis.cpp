@@ -8,6 +8,7 @@
 
 #include "imunoise/error.hpp"
 #include "imunoise/redundant/analysis.hpp"
+#include "imunoise/redundant/detection.hpp"
 #include "imunoise/redundant/geometry.hpp"
 #include "imunoise/redundant/report.hpp"
 
@@ -157,6 +158,19 @@ TEST(RedundantAnalysis, ReportJsonCarriesTheContractFields) {
   EXPECT_EQ(j["axes"][0]["N"]["unit"], "deg/sqrt(s)");
   EXPECT_EQ(j["axes"][0]["N"]["customary"]["unit"], "deg/sqrt(h)");
   EXPECT_FALSE(j.dump().find("NaN") != std::string::npos);
+}
+
+TEST(RedundantAnalysis, ReportSaysWhenTheRecordIsTooShortToTest) {
+  const std::vector<SensorModel> s(4, model(1.5e-5, 0, 0));
+  const Geometry g = make_geometry("tetra");
+  const Analysis a = analyze_unit(g, s);
+  FaultDetector d(g, s, 100.0, DetectionOptions{});
+  std::vector<std::vector<double>> rec(4, std::vector<double>(3000, 0.0));  // 30 s < 61 s
+  std::vector<std::span<const double>> spans(rec.begin(), rec.end());
+  d.push(spans);
+  EXPECT_EQ(d.result().tests, 0u);
+  const auto j = report_json(a, parse_unit("deg/s"), &d.result());
+  EXPECT_NE(j["notes"].dump().find("no detection test was made"), std::string::npos) << j["notes"].dump();
 }
 
 TEST(RedundantAnalysis, FitDocumentsAreRead) {

@@ -2,6 +2,8 @@
 // the fits, fuse the recordings and run the fused axes through `dev`; bad input exits 1 with a
 // message naming the file.
 #include <cmath>
+#include <random>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -44,7 +46,7 @@ TEST(CliRedundant, FromFitsFuseAndDetect) {
   TempDir dir;
   std::vector<std::string> recs, fits;
   for (int i = 0; i < 4; ++i) {
-    recs.push_back(simulate(dir, "g" + std::to_string(i + 1) + ".txt", 10 + i));
+    recs.push_back(simulate(dir, std::string("g").append(std::to_string(i + 1)).append(".txt"), 10 + i));
     const auto f = run_cli({"fit", recs.back(), "--units", "deg/s", "-o", dir.file("fit" + std::to_string(i + 1) + ".json")});
     ASSERT_EQ(f.exit_code, 0) << f.err;
     fits.push_back(dir.file("fit" + std::to_string(i + 1) + ".json"));
@@ -83,6 +85,49 @@ TEST(CliRedundant, FromFitsFuseAndDetect) {
   EXPECT_NE(again.err.find("fused.csv: file exists"), std::string::npos) << again.err;
 }
 
+// Six white-noise gyros (N = 1e-3 deg/sqrt(s) at 100 Hz, 200 s) as CSV files with a time column;
+// sensor 4 steps by 0.05 deg/s (about 5 minimum detectable faults) at t = 120 s.
+std::string gyro_csv(std::uint64_t seed, double step_deg_s, std::size_t samples = 20000) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal(0.0, 1e-3 * std::sqrt(100.0));
+  std::ostringstream out;
+  out.precision(10);
+  out << "t,gyro\n";
+  for (std::size_t t = 0; t < samples; ++t) {
+    out << static_cast<double>(t) / 100.0 << "," << normal(rng) + (t >= 12000 ? step_deg_s : 0.0) << "\n";
+  }
+  return out.str();
+}
+
+TEST(CliRedundant, DetectsAndIsolatesAStepInRecordings) {
+  TempDir dir;
+  std::vector<std::string> clean, faulty, fits;
+  for (int i = 0; i < 6; ++i) {
+    const std::string name = std::string("g").append(std::to_string(i + 1));
+    // Sensor 6 is 10 samples longer: the shortest length is used, with a note.
+    clean.push_back(dir.write(name + ".csv", gyro_csv(100 + static_cast<std::uint64_t>(i), 0.0, i == 5 ? 20010 : 20000)));
+    faulty.push_back(i == 3 ? dir.write(name + "_step.csv", gyro_csv(103, 0.05)) : clean.back());
+    fits.push_back(dir.file(name + ".json"));
+    const auto f = run_cli({"fit", clean.back(), "--column", "gyro", "--time-column", "t", "--units", "deg/s", "-o", fits.back()});
+    ASSERT_EQ(f.exit_code, 0) << f.err;
+  }
+  std::vector<std::string> args{"redundant", "--geometry", "cone:6:54.7356", "--column", "gyro", "--time-column", "t",
+                                "--units", "deg/s", "--detect", "--fuse"};
+  args.insert(args.end(), faulty.begin(), faulty.end());
+  args.emplace_back("--from");
+  args.insert(args.end(), fits.begin(), fits.end());
+  const auto r = run_cli(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("g6.csv has 20010 samples"), std::string::npos) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["faults"].size(), 1u) << j["faults"].dump();
+  EXPECT_EQ(j["faults"][0]["sensor"], 4);
+  EXPECT_TRUE(j["faults"][0]["isolated"].get<bool>());
+  EXPECT_NEAR(j["faults"][0]["t_s"].get<double>(), 120.0, 0.1);
+  EXPECT_GT(j["faults"][0]["statistic"].get<double>(), j["faults"][0]["threshold"].get<double>());
+  EXPECT_EQ(j["excluded_sensors"], nlohmann::json::array({4}));
+}
+
 TEST(CliRedundant, BadInputExitsOneNamingTheProblem) {
   TempDir dir;
   const auto a = simulate(dir, "a.txt", 1);
@@ -104,6 +149,8 @@ TEST(CliRedundant, BadInputExitsOneNamingTheProblem) {
   expect_error({"redundant", "--geometry", "tetra", "--fuse", a, b, c, a}, "--units");
   expect_error({"redundant", "--geometry", "tetra", "--from", dir.write("x.json", "{}"), a, b, c}, "x.json: not a fit document");
   expect_error({"redundant", "--geometry", "3+1", "--detect"}, "--fuse");
+  expect_error({"redundant", "--geometry", "tetra", "--fuse", a, b, c, a, "--units", "deg/s", "--scale", "0"}, "--scale");
+  expect_error({"redundant", "--geometry", "tetra", "--false-alarm-rate", "-1"}, "false_alarm_per_hour");
 }
 
 }  // namespace

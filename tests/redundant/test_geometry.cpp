@@ -236,3 +236,20 @@ TEST(RedundantGeometry, BadInputIsRefusedClearly) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(RedundantGeometry, ExampleFilesParse) {
+  const auto root = std::filesystem::path(IMUNOISE_TEST_DATA_DIR).parent_path().parent_path() / "examples" / "geometries";
+  const Analysis pentad = analyze_unit(make_geometry((root / "pentad.yaml").string()));
+  EXPECT_EQ(pentad.geometry.size(), 5u);
+  EXPECT_TRUE(pentad.detectable);
+  EXPECT_FALSE(pentad.isolable);  // mirror pairs: parallel parity columns
+  EXPECT_NEAR(pentad.axis_gain[0], std::sqrt(0.75), 1e-5);  // printed elevations have 6 digits
+  EXPECT_TRUE(analyze_unit(make_geometry("cone:5:54.7356")).isolable);
+  const Analysis tp1 = analyze_unit(make_geometry((root / "three_plus_one.csv").string()));
+  EXPECT_NEAR(tp1.gdop, std::sqrt(2.5), 1e-12);
+  EXPECT_EQ(tp1.geometry.notes.size(), 1u);  // (1,1,1) normalised
+}
+
+}  // namespace

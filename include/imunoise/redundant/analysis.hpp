@@ -44,6 +44,9 @@ struct DetectionOptions {
   double detection_probability = 0.99;
   /// Onset resolution: the window is split into this many blocks for the change-point estimate.
   int blocks_per_window = 20;
+  /// An isolated fault removes its sensor from the later tests (false: keep testing all
+  /// sensors, e.g. to count raw alarms).
+  bool exclude_isolated = true;
 
   /// Checks every field (positive, finite, probabilities in (0, 1), reference >= window,
   /// per-test probability < 0.5); writes why not into *error (may be null).

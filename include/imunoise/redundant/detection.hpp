@@ -15,10 +15,13 @@
 // which is meaningful when the geometry is isolable (five or more sensors, no two parity
 // columns parallel). The onset is the maximum-likelihood change point of the fault direction
 // over the last two windows, to one block (window / blocks_per_window).
-// Alarms on the same sensor within one reference length of each other are one fault (the
-// reference needs that long to absorb a step); every alarm is counted in `alarms`.
-// The detector monitors: it does not reconfigure the fusion (gdop_without says what the unit
-// would give without the sensor).
+// An isolated fault excludes its sensor from the later tests (the parity of the others, one
+// degree of freedom less, same per-test probability), so a second fault on another sensor can
+// still be detected while the reference absorbs the first. Without isolation (four sensors),
+// alarms within one reference length of each other are one fault (the reference needs that long
+// to absorb a step); so are alarms on the same sensor when exclusion is off
+// (DetectionOptions::exclude_isolated). Every alarm is counted in `alarms`. The detector does not reconfigure the
+// fusion output (gdop_without says what the unit would give without the sensor).
 #include <cstddef>
 #include <span>
 #include <vector>
@@ -50,6 +53,7 @@ struct DetectionResult {
   std::size_t alarms = 0;          ///< tests above the threshold
   double max_statistic = 0.0;      ///< largest T over all tests
   std::vector<FaultEvent> faults;
+  std::vector<std::size_t> excluded;  ///< isolated sensors, in the order they were excluded
 };
 
 class FaultDetector {
@@ -67,6 +71,8 @@ class FaultDetector {
 
  private:
   void close_block();
+  void update_isolable();
+  void exclude(std::size_t sensor);
   void close_window();
   void test();
 
@@ -76,6 +82,11 @@ class FaultDetector {
   std::size_t blocks_per_window_ = 0;
   std::vector<double> vw_;            // k x n whitened parity, row-major
   std::vector<double> inv_sigma_;     // 1 / sigma_i
+  std::vector<double> sigma_;
+  std::vector<Axis> axes_;
+  std::vector<bool> active_;          // sensors still monitored
+  double threshold_ = 0.0;            // for the current degrees of freedom
+  bool exclude_isolated_ = true;
   std::vector<double> block_acc_;     // current block sums (n)
   std::size_t in_block_ = 0;
   std::vector<double> blocks_;        // ring of the last 2 windows' block sums (2W x n)

@@ -36,6 +36,15 @@ struct FusedRecord {
 void apply_rows(const Matrix& m, std::span<const std::span<const double>> sensors,
                 std::span<const std::span<double>> out);
 
+/// Fuses into caller-owned outputs (3 axis spans and either no parity span or k of them, all
+/// of the records' length, rad/s): lets a caller reuse buffers or map a file. Returns the
+/// detection result when options.detect. Same checks as fuse_records.
+std::optional<DetectionResult> fuse_into(const Analysis& analysis,
+                                         std::span<const std::span<const double>> sensors_rad_s,
+                                         double rate_hz, const FusionOptions& options,
+                                         std::span<const std::span<double>> axes_out,
+                                         std::span<const std::span<double>> parity_out);
+
 /// Fuses whole records (one span per sensor, rad/s, equal lengths, in the geometry's order).
 /// InputError for a count or length mismatch, or detection without models.
 FusedRecord fuse_records(const Analysis& analysis, std::span<const std::span<const double>> sensors_rad_s,

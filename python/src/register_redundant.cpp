@@ -1,0 +1,190 @@
+// imunoise.redundant and imunoise.fuse: the redundant gyro unit from Python, returning the
+// document of `imunoise redundant --format json` (a dict) built by the library.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "imunoise/error.hpp"
+#include "imunoise/finite.hpp"
+#include "imunoise/redundant/analysis.hpp"
+#include "imunoise/redundant/fusion.hpp"
+#include "imunoise/redundant/geometry.hpp"
+#include "imunoise/redundant/report.hpp"
+#include "imunoise/redundant/sensor_fit.hpp"
+#include "imunoise/units.hpp"
+
+namespace py = pybind11;
+
+namespace imunoise::python {
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+py::object to_python(const nlohmann::json& j) {
+  return py::module_::import("json").attr("loads")(j.dump());
+}
+
+// Each fit is a dict (imunoise.fit's result) or a path to a JSON file of `imunoise fit`.
+std::vector<redundant::SensorModel> models_of(const py::object& fits, Unit& unit) {
+  std::vector<redundant::SensorModel> models;
+  if (fits.is_none()) return models;
+  std::string first;
+  std::size_t i = 0;
+  for (const auto& item : fits) {
+    ++i;
+    Unit u;
+    if (py::isinstance<py::dict>(item)) {
+      const std::string text = py::module_::import("json").attr("dumps")(item).cast<std::string>();
+      models.push_back(redundant::sensor_model_from_fit_json(nlohmann::json::parse(text),
+                                                             "fits[" + std::to_string(i - 1) + "]", u));
+    } else {
+      const std::filesystem::path path(py::str(item).cast<std::string>());
+      std::vector<std::filesystem::path> one{path};
+      models.push_back(redundant::read_fit_files(one, u).front());
+    }
+    if (i == 1) {
+      unit = u;
+    } else if (u.name != unit.name) {
+      throw InputError("fits[" + std::to_string(i - 1) + "] is in " + u.name + " but fits[0] is in " +
+                       unit.name + ": fit every gyro in the same unit");
+    }
+  }
+  return models;
+}
+
+redundant::DetectionOptions detection_options(double window_s, double reference_s, double false_alarm_per_hour,
+                                              double detection_probability) {
+  redundant::DetectionOptions o;
+  o.window_s = window_s;
+  o.reference_s = reference_s;
+  o.false_alarm_per_hour = false_alarm_per_hour;
+  o.detection_probability = detection_probability;
+  std::string why;
+  if (!o.IsValid(&why)) throw InputError("detection options: " + why);
+  return o;
+}
+
+// Without units or fits the numbers are used as given (fusion is linear) and labelled
+// "input unit".
+Unit resolve_unit(const std::string& units, const Unit& from_fits, bool have_fits) {
+  if (units.empty()) return have_fits ? from_fits : Unit{"input unit", Quantity::angular_rate, 1.0};
+  const Unit u = parse_unit(units);
+  if (u.quantity != Quantity::angular_rate) throw InputError("units '" + units + "' is not an angular rate (e.g. deg/s)");
+  if (have_fits && from_fits.name != "input unit" && from_fits.name != u.name) {
+    throw InputError("units='" + units + "' but the fits are in " + from_fits.name + "; use one unit");
+  }
+  return u;
+}
+
+py::object redundant_analysis(const std::string& geometry, const py::object& fits, const std::string& units,
+                              double window_s, double reference_s, double false_alarm_per_hour,
+                              double detection_probability) {
+  const auto g = redundant::make_geometry(geometry);
+  Unit fit_unit;
+  const auto models = models_of(fits, fit_unit);
+  const Unit unit = resolve_unit(units, fit_unit, !models.empty());
+  redundant::AnalysisOptions ao;
+  ao.detection = detection_options(window_s, reference_s, false_alarm_per_hour, detection_probability);
+  return to_python(redundant::report_json(redundant::analyze_unit(g, models, ao), unit));
+}
+
+py::array_t<double> owned_array(std::vector<double>&& v) {
+  auto* owned = new std::vector<double>(std::move(v));
+  py::capsule free_when_done(owned, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+  return py::array_t<double>(static_cast<py::ssize_t>(owned->size()), owned->data(), free_when_done);
+}
+
+py::dict fuse(const py::object& records, const std::string& geometry, double rate, const std::string& units,
+              const py::object& fits, bool detect, double window_s, double reference_s,
+              double false_alarm_per_hour, double detection_probability, unsigned threads) {
+  const auto g = redundant::make_geometry(geometry);
+  if (!(rate > 0) || !std::isfinite(rate)) throw InputError("rate must be positive and finite (Hz)");
+  // records: a 2-D array (sensors x samples) or a sequence of 1-D arrays.
+  std::vector<Array> arrays;
+  const Array as2d = py::isinstance<py::array>(records) ? Array::ensure(records) : Array();
+  if (as2d && as2d.ndim() == 2) {
+    for (py::ssize_t i = 0; i < as2d.shape(0); ++i) {
+      arrays.push_back(Array::ensure(records.attr("__getitem__")(i)));
+    }
+  } else {
+    for (const auto& r : records) arrays.push_back(Array::ensure(r));
+  }
+  Unit fit_unit;
+  auto models = models_of(fits, fit_unit);
+  const Unit unit = resolve_unit(units, fit_unit, !models.empty());
+  std::vector<std::vector<double>> si;
+  for (std::size_t i = 0; i < arrays.size(); ++i) {
+    const auto& a = arrays[i];
+    if (!a || a.ndim() != 1) throw InputError("records[" + std::to_string(i) + "] must be a 1-D array");
+    std::vector<double> v(a.data(), a.data() + a.shape(0));
+    if (const std::size_t k = first_non_finite(v, 0); k < v.size()) {
+      throw InputError("records[" + std::to_string(i) + "]: sample " + std::to_string(k) + " is not finite");
+    }
+    for (auto& x : v) x *= unit.to_si;
+    si.push_back(std::move(v));
+  }
+  if (detect && models.empty()) {
+    for (std::size_t i = 0; i < si.size(); ++i) {
+      models.push_back(redundant::fit_sensor_model(si[i], rate, "records[" + std::to_string(i) + "]"));
+    }
+  }
+  redundant::AnalysisOptions ao;
+  ao.detection = detection_options(window_s, reference_s, false_alarm_per_hour, detection_probability);
+  redundant::FusionOptions fo;
+  fo.detect = detect;
+  fo.detection = ao.detection;
+  fo.threads = threads;
+  std::vector<std::span<const double>> spans;
+  for (const auto& v : si) spans.emplace_back(v);
+  redundant::Analysis analysis;
+  redundant::FusedRecord fused;
+  {
+    py::gil_scoped_release release;
+    analysis = redundant::analyze_unit(g, models, ao);
+    fused = redundant::fuse_records(analysis, spans, rate, fo);
+  }
+  const double f = 1.0 / unit.to_si;
+  py::dict out;
+  const char* names[3] = {"x", "y", "z"};
+  for (std::size_t j = 0; j < 3; ++j) {
+    for (auto& v : fused.axes_rad_s[j]) v *= f;
+    out[names[j]] = owned_array(std::move(fused.axes_rad_s[j]));
+  }
+  py::list parity;
+  for (auto& p : fused.parity_rad_s) {
+    for (auto& v : p) v *= f;
+    parity.append(owned_array(std::move(p)));
+  }
+  out["parity"] = parity;
+  out["rate_hz"] = rate;
+  out["unit"] = unit.name;
+  out["report"] = to_python(redundant::report_json(analysis, unit, fused.detection ? &*fused.detection : nullptr));
+  return out;
+}
+
+}  // namespace
+
+void register_redundant(py::module_& m) {
+  m.def("redundant", &redundant_analysis, py::arg("geometry"), py::arg("fits") = py::none(),
+        py::arg("units") = "", py::arg("window_s") = 1.0, py::arg("reference_s") = 60.0,
+        py::arg("false_alarm_per_hour") = 0.01, py::arg("detection_probability") = 0.99,
+        "Redundant gyro unit: geometry ('tetra', 'cone:N:DEG', '3+1', 'dodeca' or a file), optionally "
+        "each sensor's fit (dicts from imunoise.fit or fit JSON paths) -> the dict of "
+        "`imunoise redundant --format json` (gains, GDOP, parity, fused-axis N/B/K, detection design)");
+  m.def("fuse", &fuse, py::arg("records"), py::arg("geometry"), py::arg("rate") = 1.0, py::arg("units") = "",
+        py::arg("fits") = py::none(), py::arg("detect") = false, py::arg("window_s") = 1.0,
+        py::arg("reference_s") = 60.0, py::arg("false_alarm_per_hour") = 0.01,
+        py::arg("detection_probability") = 0.99, py::arg("threads") = 1,
+        "Fuse synchronous gyro records (sensors x samples, in `units`) through the geometry -> dict "
+        "with arrays x, y, z (fused body rates), parity (list of p_1..p_k), and report (the JSON "
+        "document; with detect=True its 'faults'). Without fits, detection fits each record itself.");
+}
+
+}  // namespace imunoise::python

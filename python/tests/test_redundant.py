@@ -1,0 +1,71 @@
+"""imunoise.redundant and imunoise.fuse mirror the C++ tests (tests/redundant): the closed-form
+geometry values of ../shared/references.md, exact fusion of a known body rate, detection of a
+step fault, and bad input raising ValueError."""
+import math
+
+import numpy as np
+import pytest
+
+import imunoise
+
+
+def test_tetra_and_three_plus_one_closed_forms():
+    t = imunoise.redundant("tetra")
+    assert t["axis_gain"] == pytest.approx([math.sqrt(0.75)] * 3, rel=1e-12)
+    assert t["gdop"] == pytest.approx(1.5, rel=1e-12)
+    v = np.array(t["parity"][0])
+    assert np.allclose(np.abs(v), 0.5) and v[0] * v[1] < 0
+    s = imunoise.redundant("3+1")
+    assert s["gdop"] == pytest.approx(math.sqrt(2.5), rel=1e-12)
+    assert s["axis_gain"][0] == pytest.approx(math.sqrt(5 / 6), rel=1e-12)
+
+
+def test_fuse_recovers_a_known_body_rate_and_fits_propagate():
+    g = imunoise.redundant("cone:6:54.7356")
+    h = np.array(g["H"])
+    rate = 100.0
+    w = np.array([0.1, -0.2, 0.3])  # deg/s
+    records = [imunoise.simulate(rate=rate, duration=600.0, N=8.9e-4, seed=i + 1) + h[i] @ w for i in range(6)]
+    fits = [imunoise.fit(r, rate, units="deg/s") for r in records]
+    out = imunoise.fuse(records, "cone:6:54.7356", rate=rate, units="deg/s", fits=fits, detect=True)
+    for j, axis in enumerate("xyz"):
+        assert out[axis].shape == (60000,)
+        # White noise only: the mean's sd is N_axis / sqrt(T) = 0.707 * 8.9e-4 / sqrt(600).
+        assert out[axis].mean() == pytest.approx(w[j], abs=5 * 0.707 * 8.9e-4 / math.sqrt(600))
+    assert len(out["parity"]) == 3
+    rep = out["report"]
+    assert rep["faults"] == []
+    assert rep["axes"][0]["N"]["value"] == pytest.approx(math.sqrt(0.5) * 8.9e-4, rel=0.05)
+
+
+def test_fuse_detects_and_isolates_a_step():
+    geometry = "cone:6:54.7356"
+    rate = 100.0
+    records = np.stack([imunoise.simulate(rate=rate, duration=300.0, N=8.9e-4, seed=20 + i) for i in range(6)])
+    # The sensors' models from the clean records (a calibration run), then a step on sensor 5.
+    fits = [imunoise.fit(r, rate, units="deg/s") for r in records]
+    records[4, 150 * 100:] += 0.05  # deg/s from t = 150 s
+    out = imunoise.fuse(records, geometry, rate=rate, units="deg/s", fits=fits, detect=True)
+    faults = out["report"]["faults"]
+    assert len(faults) == 1
+    assert faults[0]["sensor"] == 5 and faults[0]["isolated"]
+    assert abs(faults[0]["t_s"] - 150.0) < 0.2
+
+
+def test_bad_input_raises_value_error():
+    with pytest.raises(ValueError, match="at least 3"):
+        imunoise.redundant("cone:2:40")
+    with pytest.raises(ValueError, match="3 recordings for the 4 sensors"):
+        imunoise.fuse([np.zeros(10)] * 3, "tetra", rate=10.0, units="deg/s")
+    with pytest.raises(ValueError, match="not finite"):
+        imunoise.fuse([np.array([0.0, np.nan])] * 4, "tetra", rate=10.0, units="deg/s")
+    with pytest.raises(ValueError, match="not an angular rate"):
+        imunoise.fuse([np.zeros(10)] * 4, "tetra", rate=10.0, units="m/s^2")
+
+
+def test_fuse_without_units_keeps_the_numbers():
+    h = np.array(imunoise.redundant("3+1")["H"])
+    w = np.array([1.0, 2.0, 3.0])
+    out = imunoise.fuse(np.tile(h @ w, (5, 1)).T, "3+1")
+    assert out["unit"] == "input unit"
+    assert np.allclose(out["x"], 1.0) and np.allclose(out["z"], 3.0) and np.allclose(out["parity"][0], 0.0)
