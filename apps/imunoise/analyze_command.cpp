@@ -209,6 +209,7 @@ std::vector<ChannelInput> plan_channels(const AnalyzeOptionsCli& o,
 
 void run_analyze(const AnalyzeOptionsCli& o) {
   if (o.dir.empty()) throw InputError("analyze needs -o DIR: the directory the report goes to");
+  study::check_report_dir(o.dir, o.force);  // before the study's work, not after
   study::StudyOptions so;
   so.curves.estimators = parse_estimator_list(o.estimators);
   validate_confidence_level(o.ci_level, "--ci");

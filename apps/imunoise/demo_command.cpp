@@ -26,6 +26,7 @@ struct DemoOptionsCli {
 
 void run_demo(const DemoOptionsCli& o) {
   const auto start = std::chrono::steady_clock::now();
+  study::check_report_dir(o.dir, o.force);  // before minutes of work, not after
   Progress progress(o.quiet);
   study::DemoOptions demo;
   demo.duration_s = o.hours * 3600.0;

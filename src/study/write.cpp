@@ -68,6 +68,21 @@ std::string find_plotly_js() {
   return {};
 }
 
+void check_report_dir(const std::string& dir, bool force) {
+  const fs::path root(dir);
+  std::error_code ec;
+  if (fs::exists(root, ec) && !fs::is_directory(root, ec)) {
+    throw InputError(dir + ": exists and is not a directory; fix: choose another -o DIR");
+  }
+  if (force) return;
+  for (const char* name : {"report.json", "report.html", "report.md"}) {
+    if (fs::exists(root / name, ec)) {
+      throw InputError(dir + ": already holds " + name + "; imunoise does not overwrite a report — "
+                       "choose another -o DIR or pass --force");
+    }
+  }
+}
+
 WrittenReport write_report(const nlohmann::json& doc, const std::string& dir,
                            const WriteOptions& options) {
   WrittenReport written;

@@ -55,6 +55,20 @@ TEST(CliAnalyze, WritesTheReportOfEveryColumn) {
   EXPECT_EQ(forced.exit_code, 0) << forced.err;
 }
 
+// An existing report is refused before any input is read or studied: with a broken input the
+// refusal, not the input's error, is what the user sees (no minutes of work thrown away).
+TEST(CliAnalyze, ExistingReportIsRefusedBeforeTheWork) {
+  TempDir dir;
+  const auto broken = dir.write("broken.csv", "t,gx\n0,1\n0.01,not-a-number\n");
+  const auto out = dir.file("report");
+  std::filesystem::create_directories(out);
+  dir.write("report/report.json", "{}\n");
+  const auto r = run_cli({"analyze", broken, "--time-column", "t", "--units", "deg/s", "-o", out});
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("already holds report.json"), std::string::npos) << r.err;
+  EXPECT_EQ(slurp(out + "/report.json"), "{}\n");
+}
+
 TEST(CliAnalyze, BrokenFileAmongGoodOnesIsNamedAndKeepGoingFinishesTheOthers) {
   TempDir dir;
   const auto good1 = dir.write("a.csv", csv_record(8000, 100.0, 2));

@@ -28,6 +28,11 @@ struct WrittenReport {
 /// web/), else the installed share/imunoise copy; "" when none exists.
 std::string find_plotly_js();
 
+/// The check write_report makes first, for callers to make before the study's work: InputError
+/// when `dir` exists but is not a directory, or (without force) already holds a report
+/// (report.json, report.html or report.md). write_report still checks every file it writes.
+void check_report_dir(const std::string& dir, bool force);
+
 /// Writes the report of `doc` (study_json) into `dir` (created when missing). InputError when
 /// DIR cannot be created or written, or a report file exists without force (naming it).
 WrittenReport write_report(const nlohmann::json& doc, const std::string& dir,
