@@ -106,7 +106,27 @@ def test_document_equals_cli_report_json(doc, data, tmp_path):
         for cm, ct in zip(mine["curves"], theirs["curves"]):
             _curves_close(cm, ct)
         assert (mine["nav"] is None) == (theirs["nav"] is None)
+        # The rest of the channel (model, spec, nav, figures' data) too: only where the samples
+        # came from differs ("channels[i]" against the file name).
+        _same(mine, theirs, "channel")
     assert doc["version"] == ref["version"]
+
+
+def _same(a, b, where):
+    """Equal documents, floats to 1e-12 relative, ignoring the "source" fields."""
+    if isinstance(a, dict):
+        assert isinstance(b, dict) and a.keys() == b.keys(), where
+        for k in a:
+            if k != "source":
+                _same(a[k], b[k], f"{where}/{k}")
+    elif isinstance(a, list):
+        assert isinstance(b, list) and len(a) == len(b), where
+        for i, (x, y) in enumerate(zip(a, b)):
+            _same(x, y, f"{where}/{i}")
+    elif isinstance(a, float) and isinstance(b, float):
+        assert a == pytest.approx(b, rel=1e-12, abs=0), where
+    else:
+        assert a == b, where
 
 
 def _curves_close(a, b):
