@@ -14,6 +14,8 @@ conventions, helpers and return types; docs/allantools.md); the functions here k
 Stable32 conventions. ``imunoise.nav(...)`` gives the navigation error growth (docs/navigation.md).
 ``imunoise.redundant(geometry, fits)`` analyses a redundant gyro unit and
 ``imunoise.fuse(records, geometry, rate=..., units=...)`` fuses its records (docs/redundant.md).
+``imunoise.analyze(channels, rate, units=...)`` runs the whole study and returns the document of
+`imunoise analyze`'s report.json (docs/study.md).
 """
 from ._imunoise import InputError, deviation, fit, simulate, simulate_preset
 from ._imunoise import nav
@@ -23,6 +25,8 @@ __all__ = ["InputError", "deviation", "fit", "simulate", "simulate_preset", "red
            "totdev", "mtotdev", "ttotdev", "htotdev", "theo1", "theobr", "mtie",
            "tierms"]
 __all__ += ["nav"]  # navigation error growth (register_nav.cpp)
+from ._imunoise import analyze  # noqa: E402  the whole study (register_study.cpp)
+__all__ += ["analyze"]
 
 
 def _estimator(name):

@@ -10,6 +10,7 @@ void register_fit(py::module_& m);
 void register_nav(py::module_& m);
 void register_allantools(py::module_& m);
 void register_redundant(py::module_& m);
+void register_study(py::module_& m);
 }
 
 PYBIND11_MODULE(_imunoise, m) {
@@ -20,4 +21,5 @@ PYBIND11_MODULE(_imunoise, m) {
   imunoise::python::register_nav(m);
   imunoise::python::register_allantools(m);
   imunoise::python::register_redundant(m);
+  imunoise::python::register_study(m);
 }
