@@ -34,6 +34,21 @@ std::string html_escape(const std::string& s) {
   return out;
 }
 
+// One sentence on the fault detector's run over the recorded data (redundant unit).
+std::string fault_summary(const json& r) {
+  if (!r.contains("tests")) return "Fault detection was not run on the recorded data (see the notes).";
+  std::string text = fmt::format("Fault detection on the recorded data: {} tests, {} alarms", r["tests"].dump(),
+                                 r["alarms"].dump());
+  const auto& faults = r["faults"];
+  if (faults.empty()) return text + "; no fault detected.";
+  text += "; faults:";
+  for (const auto& f : faults) {
+    text += fmt::format(" sensor {} from {} s ({});", f["sensor"].dump(), g(f["t_s"], 6),
+                        f["isolated"].get<bool>() ? "isolated" : "detected, not isolable");
+  }
+  return text;
+}
+
 std::string md_escape(const std::string& s) {
   std::string out;
   for (char c : s) {
@@ -233,6 +248,7 @@ std::string render_markdown(const json& doc) {
                       str(r["geometry"]), r["n_sensors"].get<int>(), r["axis_gain"].dump(),
                       g(r["gdop"]), r["detectable"].get<bool>() ? "" : "not ",
                       r["isolable"].get<bool>() ? "" : "not ");
+    md += fault_summary(r) + "\n";
   }
   if (doc.contains("reference") && !doc["reference"].is_null()) {
     md += "\n## " + str(doc["reference"]["title"]) + "\n\n" + str(doc["reference"]["markdown"]) + "\n";
@@ -695,6 +711,7 @@ std::string render_html(const json& doc, const std::string& plotly_js) {
          "sensors). The figure of the fused axes compares the measured fused curves with the noise "
          "predicted from the sensors' fits. Every number of the analysis (fusion matrix, parity, "
          "detection thresholds, minimum detectable faults) is in report.json under \"redundant\".</p>\n";
+    h += "<p>" + html_escape(fault_summary(r)) + "</p>\n";
   }
   if (doc.contains("reference") && !doc["reference"].is_null()) {
     h += "<h2>" + html_escape(str(doc["reference"]["title"])) + "</h2>\n" +

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <span>
+#include <thread>
 
 #include <fmt/core.h>
 #include <fmt/ranges.h>
@@ -13,6 +15,7 @@
 #include "imunoise/nav/navigation.hpp"
 #include "imunoise/nav/report.hpp"
 #include "imunoise/redundant/analysis.hpp"
+#include "imunoise/redundant/fusion.hpp"
 #include "imunoise/redundant/report.hpp"
 #include "imunoise/spec/exports.hpp"
 #include "imunoise/spec/report.hpp"
@@ -223,6 +226,34 @@ nav::NavOptions nav_options(const StudyOptions& options, const NoiseCoefficients
   return o;
 }
 
+// Fault detection on the recorded data (the redundant module's detector). The rates are the
+// phase's first differences: the offset phase_from_rate removed is constant per sensor, and the
+// detector tests only changes of the parity against its reference window.
+void detect_faults(Study& study, const redundant::Analysis& analysis,
+                   const std::vector<const ChannelStudy*>& used, double rate_hz, unsigned threads) {
+  const double tau0_s = 1.0 / rate_hz;
+  std::vector<std::vector<double>> rates(used.size());
+  std::vector<std::span<const double>> spans;
+  for (std::size_t i = 0; i < used.size(); ++i) {
+    const auto& phase = used[i]->record.phase_si;
+    rates[i].resize(phase.size() - 1);
+    for (std::size_t k = 0; k + 1 < phase.size(); ++k) rates[i][k] = (phase[k + 1] - phase[k]) / tau0_s;
+    spans.emplace_back(rates[i]);
+  }
+  redundant::FusionOptions options;
+  options.detect = true;
+  options.parity = false;
+  options.threads = threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
+  try {
+    const auto fused = redundant::fuse_records(analysis, spans, rate_hz, options);
+    if (fused.detection) {
+      study.redundant = redundant::report_json(analysis, used.front()->record.rate_unit, &*fused.detection);
+    }
+  } catch (const InputError& e) {
+    study.notes.push_back(std::string("redundant unit: fault detection not run on the record: ") + e.what());
+  }
+}
+
 // The redundant unit: the channels are its sensors, in order. The analysis (fusion matrix,
 // fused axes' noise predicted from the sensors' fits, parity, detection design) comes from the
 // redundant module; the fused axes' curves are measured here by applying the fusion matrix to
@@ -257,6 +288,7 @@ void study_redundant(Study& study, const CurveOptions& curve_options) {
     }
   }
   fused.n_samples = used.front()->record.n_samples;
+  detect_faults(study, analysis, used, fused.rate_hz, curve_options.threads);
   CurveOptions co = curve_options;
   co.estimators = {Estimator::oadev};
   const char* names[3] = {"x", "y", "z"};

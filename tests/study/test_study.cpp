@@ -8,11 +8,13 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <span>
 #include <sstream>
 
 #include "imunoise/error.hpp"
 #include "imunoise/fit/report.hpp"
 #include "imunoise/nav/report.hpp"
+#include "imunoise/redundant/fusion.hpp"
 #include "imunoise/redundant/report.hpp"
 #include "imunoise/spec/report.hpp"
 #include "imunoise/study/fit_stage.hpp"
@@ -123,12 +125,28 @@ TEST(Study, RedundantUnitIsTheModulesAnalysisAndItsFusedAxesMatchIt) {
   const auto doc = study::study_json(result);
   std::vector<redundant::SensorModel> sensors;
   for (const auto& ch : result.channels) sensors.push_back({ch.record.name, ch.fit->coefficients});
-  auto expected = redundant::report_json(
-      redundant::analyze_unit(redundant::make_geometry("tetra"), sensors), parse_unit("deg/s"));
+  // The module's analysis, and its detector run over the same rates (the phase's differences).
+  const auto analysis = redundant::analyze_unit(redundant::make_geometry("tetra"), sensors);
+  std::vector<std::vector<double>> rates;
+  std::vector<std::span<const double>> spans;
+  for (const auto& r : copy) {
+    std::vector<double> rate(r.phase_si.size() - 1);
+    for (std::size_t k = 0; k < rate.size(); ++k) rate[k] = (r.phase_si[k + 1] - r.phase_si[k]) / (1.0 / r.rate_hz);
+    rates.push_back(std::move(rate));
+  }
+  for (const auto& r : rates) spans.emplace_back(r);
+  redundant::FusionOptions fusion;
+  fusion.detect = true;
+  const auto fused = redundant::fuse_records(analysis, spans, 100.0, fusion);
+  ASSERT_TRUE(fused.detection.has_value());
+  auto expected = redundant::report_json(analysis, parse_unit("deg/s"), &*fused.detection);
   auto actual = doc["redundant"];
   ASSERT_TRUE(actual.contains("fused_curves"));
   actual.erase("fused_curves");
   EXPECT_EQ(actual, expected);
+  // Clean records: no fault (false alarms are configured at 0.01 per hour).
+  EXPECT_TRUE(doc["redundant"]["faults"].empty()) << doc["redundant"]["faults"];
+  EXPECT_GT(doc["redundant"]["tests"].get<int>(), 1000);
   // The fused axes measured from the samples: at tau ~ 1 s (white noise, thousands of degrees
   // of freedom: the bars are ~2 %) each axis agrees with the fused noise the module predicts,
   // 0.866 N / sqrt(tau) on the tetrahedron, within 4 bars.
@@ -141,6 +159,33 @@ TEST(Study, RedundantUnitIsTheModulesAnalysisAndItsFusedAxesMatchIt) {
     }
   }
   EXPECT_EQ(doc["figures"][doc["figures"].size() - 4]["id"], "adev_fused");
+}
+
+// A step of 0.05 deg/s on gyro 2 at 900 s (57 times the 1 s window's noise of one sensor):
+// the study's detector finds it on the recorded data within two windows of its onset; the
+// tetrahedron detects a single fault but cannot isolate it.
+TEST(Study, RedundantUnitDetectsAStepFaultInTheRecords) {
+  std::vector<study::Record> records;
+  for (int i = 0; i < 4; ++i) {
+    records.push_back(simulated_gyro("g" + std::to_string(i + 1), 8.8e-4, 1e-5, 100.0, 1800.0,
+                                     static_cast<std::uint64_t>(31 + i)));
+  }
+  const double step_rad_s = 0.05 * 3.14159265358979323846 / 180.0;
+  const double onset_s = 900.0;
+  auto& phase = records[1].phase_si;
+  for (std::size_t k = 0; k < phase.size(); ++k) {
+    const double t_s = static_cast<double>(k) / 100.0;
+    if (t_s > onset_s) phase[k] += step_rad_s * (t_s - onset_s);
+  }
+  study::StudyOptions o;
+  o.geometry = "tetra";
+  const auto doc = study::study_json(study::run_study(std::move(records), o));
+  const auto& faults = doc["redundant"]["faults"];
+  ASSERT_EQ(faults.size(), 1u) << faults;
+  EXPECT_EQ(faults[0]["sensor"], 2);
+  EXPECT_NEAR(faults[0]["t_s"].get<double>(), onset_s, 2.0);
+  EXPECT_FALSE(faults[0]["isolated"].get<bool>());
+  EXPECT_NE(study::render_markdown(doc).find("sensor 2 from"), std::string::npos);
 }
 
 TEST(Study, FiguresCarryDataAndUnits) {
