@@ -87,19 +87,17 @@ IMUNOISE_CLONES double sum_sq_third_difference(const double* x, std::size_t m,
 
 namespace {
 
-typedef long long Index8 __attribute__((vector_size(64)));
-
 // In-vector inclusive prefix sum of eight lanes (lane i: sum of lanes 0..i), three shift-adds.
 __attribute__((always_inline)) inline Vec8 inclusive_scan(Vec8 v) {
   const Vec8 zero = {};
-  v += __builtin_shuffle(v, zero, Index8{8, 0, 1, 2, 3, 4, 5, 6});
-  v += __builtin_shuffle(v, zero, Index8{8, 8, 0, 1, 2, 3, 4, 5});
-  v += __builtin_shuffle(v, zero, Index8{8, 8, 8, 8, 0, 1, 2, 3});
+  v += __builtin_shufflevector(v, zero, 8, 0, 1, 2, 3, 4, 5, 6);
+  v += __builtin_shufflevector(v, zero, 8, 8, 0, 1, 2, 3, 4, 5);
+  v += __builtin_shufflevector(v, zero, 8, 8, 8, 8, 0, 1, 2, 3);
   return v;
 }
 
 __attribute__((always_inline)) inline Vec8 broadcast_last(Vec8 v) {
-  return __builtin_shuffle(v, Index8{7, 7, 7, 7, 7, 7, 7, 7});
+  return __builtin_shufflevector(v, v, 7, 7, 7, 7, 7, 7, 7, 7);
 }
 
 }  // namespace
