@@ -12,6 +12,7 @@
 #include <fmt/core.h>
 
 #include "commands.hpp"
+#include "imunoise/comma_list.hpp"
 #include "imunoise/confidence/interval.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/estimator.hpp"
@@ -55,21 +56,6 @@ struct AnalyzeOptionsCli {
   unsigned threads = 0;
   std::string title;
 };
-
-std::vector<std::string> split_list(const std::string& text) {
-  std::vector<std::string> out;
-  std::string item;
-  for (char c : text) {
-    if (c == ',') {
-      out.push_back(item);
-      item.clear();
-    } else if (c != ' ') {
-      item += c;
-    }
-  }
-  if (!text.empty()) out.push_back(item);
-  return out;
-}
 
 std::string stem_of(const std::string& file) {
   if (file == "-") return "stdin";
@@ -140,7 +126,7 @@ struct ChannelInput {
 std::vector<ChannelInput> plan_channels(const AnalyzeOptionsCli& o,
                                         std::vector<study::FailedInput>& failed) {
   std::vector<ChannelInput> plan;
-  const auto wanted = split_list(o.columns);
+  const auto wanted = split_comma_list(o.columns);
   for (const auto& file : o.files) {
     InputOptions base;
     base.file = file;
@@ -187,7 +173,7 @@ std::vector<ChannelInput> plan_channels(const AnalyzeOptionsCli& o,
       plan.push_back(std::move(ch));
     }
   }
-  const auto names = split_list(o.names);
+  const auto names = split_comma_list(o.names);
   if (!names.empty()) {
     if (names.size() != plan.size()) {
       throw InputError(fmt::format("--names gives {} names for {} channels; fix: one name per "
@@ -195,7 +181,7 @@ std::vector<ChannelInput> plan_channels(const AnalyzeOptionsCli& o,
     }
     for (std::size_t i = 0; i < plan.size(); ++i) plan[i].name = names[i];
   }
-  const auto units = split_list(o.units);
+  const auto units = split_comma_list(o.units);
   if (units.size() > 1 && units.size() != plan.size()) {
     throw InputError(fmt::format("--units gives {} units for {} channels; fix: one unit for all, "
                                  "or one per channel in file and column order",

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "imunoise/comma_list.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/estimator.hpp"
 #include "imunoise/finite.hpp"
@@ -43,20 +44,7 @@ constexpr std::size_t kOffsetSamples = std::size_t{1} << 20;
 std::vector<std::string> string_list(const py::object& value, const char* what) {
   std::vector<std::string> out;
   if (value.is_none()) return out;
-  if (py::isinstance<py::str>(value)) {
-    std::string item;
-    const std::string text = value.cast<std::string>();
-    for (char c : text) {
-      if (c == ',') {
-        out.push_back(item);
-        item.clear();
-      } else if (c != ' ') {
-        item += c;
-      }
-    }
-    if (!text.empty()) out.push_back(item);
-    return out;
-  }
+  if (py::isinstance<py::str>(value)) return split_comma_list(value.cast<std::string>());
   try {
     return value.cast<std::vector<std::string>>();
   } catch (const py::cast_error&) {

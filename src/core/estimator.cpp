@@ -4,6 +4,7 @@
 #include <array>
 #include <string>
 
+#include "imunoise/comma_list.hpp"
 #include "imunoise/error.hpp"
 
 namespace imunoise {
@@ -59,17 +60,15 @@ Estimator parse_estimator(std::string_view name) {
 
 std::vector<Estimator> parse_estimator_list(std::string_view names) {
   if (names == "all") return all_estimators();
+  const auto items = split_comma_list(names);
+  if (items.empty()) throw InputError("no estimator given; known: " + known_names() + " (or all)");
   std::vector<Estimator> list;
-  while (true) {
-    const auto comma = names.find(',');
-    const auto item = names.substr(0, comma);
+  for (const auto& item : items) {
     const Estimator estimator = parse_estimator(item);
     if (std::find(list.begin(), list.end(), estimator) != list.end()) {
-      throw InputError("estimator '" + std::string(item) + "' is listed twice");
+      throw InputError("estimator '" + item + "' is listed twice");
     }
     list.push_back(estimator);
-    if (comma == std::string_view::npos) break;
-    names.remove_prefix(comma + 1);
   }
   return list;
 }

@@ -1,5 +1,6 @@
 #include "imunoise/tau_grid.hpp"
 
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -7,6 +8,7 @@
 
 #include <fast_float/fast_float.h>
 
+#include "imunoise/comma_list.hpp"
 #include "imunoise/error.hpp"
 
 namespace imunoise {
@@ -21,17 +23,6 @@ double parse_number(std::string_view text, std::string_view what) {
                      "' as a number");
   }
   return value;
-}
-
-std::vector<std::string_view> split_commas(std::string_view text) {
-  std::vector<std::string_view> items;
-  while (true) {
-    const auto comma = text.find(',');
-    items.push_back(text.substr(0, comma));
-    if (comma == std::string_view::npos) break;
-    text.remove_prefix(comma + 1);
-  }
-  return items;
 }
 
 void sort_unique(std::vector<std::size_t>& factors) {
@@ -73,7 +64,7 @@ TauGrid parse_tau_grid(std::string_view spec) {
                      "of taus in seconds such as 0.1,1,10");
   }
   grid.kind = TauGrid::Kind::taus_s;
-  for (const auto item : split_commas(spec)) {
+  for (const auto& item : split_comma_list(spec)) {
     const double tau_s = parse_number(item, "tau (expected octave, decade, all, perdecade:K or seconds)");
     if (tau_s <= 0) throw InputError("tau must be positive, got " + std::string(item));
     grid.taus_s.push_back(tau_s);
@@ -84,7 +75,7 @@ TauGrid parse_tau_grid(std::string_view spec) {
 TauGrid parse_factor_list(std::string_view spec) {
   TauGrid grid;
   grid.kind = TauGrid::Kind::factors;
-  for (const auto item : split_commas(spec)) {
+  for (const auto& item : split_comma_list(spec)) {
     const double m = parse_number(item, "averaging factor");
     if (m < 1 || m != std::floor(m) || m > 1e15) {
       throw InputError("averaging factors must be positive integers, got '" + std::string(item) +
