@@ -491,20 +491,29 @@ SpecTerm builtin_term(char symbol, double value, std::string unit) {
   return term;
 }
 
-Spec tg100() {
-  // Paper Table 1 (TG-100 datasheet, "Laboratory of Micro-Devices"), values at +25 degC.
+// A datasheet gyroscope at +25 degC: white-noise and bias-instability terms, range, bandwidth.
+Spec builtin_gyro(std::string name, std::string description, SpecTerm random_walk,
+                  SpecTerm bias_instability, double range_deg_s, double bandwidth_hz) {
   Spec spec;
-  spec.name = "tg100";
-  spec.description =
-      "TG-100 MEMS angular-rate sensor (Laboratory of Micro-Devices), datasheet "
-      "as in the paper's Table 1, +25 degC";
-  spec.source = "builtin:tg100";
+  spec.source = "builtin:" + name;
+  spec.name = std::move(name);
+  spec.description = std::move(description);
   spec.sensor = SensorKind::gyroscope;
   spec.tolerance = 0.0;
-  spec.random_walk = builtin_term('N', 0.05, "deg/sqrt(h)");
-  spec.bias_instability = builtin_term('B', 2.0, "deg/h");
-  spec.range = SpecRating{100.0, "deg/s", 100.0 * units::deg_to_rad};
-  spec.bandwidth = SpecRating{50.0, "Hz", 50.0};
+  spec.random_walk = std::move(random_walk);
+  spec.bias_instability = std::move(bias_instability);
+  spec.range = SpecRating{range_deg_s, "deg/s", range_deg_s * units::deg_to_rad};
+  spec.bandwidth = SpecRating{bandwidth_hz, "Hz", bandwidth_hz};
+  return spec;
+}
+
+Spec tg100() {
+  // Paper Table 1 (TG-100 datasheet, "Laboratory of Micro-Devices"), values at +25 degC.
+  Spec spec = builtin_gyro("tg100",
+                           "TG-100 MEMS angular-rate sensor (Laboratory of Micro-Devices), "
+                           "datasheet as in the paper's Table 1, +25 degC",
+                           builtin_term('N', 0.05, "deg/sqrt(h)"), builtin_term('B', 2.0, "deg/h"),
+                           100.0, 50.0);
   spec.scale_factor = SpecRating{20.0, "mV/(deg/s)", 20.0e-3 / units::deg_to_rad};
   return spec;
 }
@@ -515,19 +524,11 @@ Spec adis16405() {
   // stability 0.007 deg/s (1 sigma, from the Allan curve), dynamic range +/-300 deg/s,
   // bandwidth 330 Hz. The output is digital (0.05 deg/s per LSB at +/-300 deg/s): there is no
   // analog scale factor.
-  Spec spec;
-  spec.name = "adis16405";
-  spec.description =
-      "ADIS16405 MEMS IMU gyroscopes (Analog Devices), datasheet at +25 degC; digital output, "
-      "0.05 deg/s LSB";
-  spec.source = "builtin:adis16405";
-  spec.sensor = SensorKind::gyroscope;
-  spec.tolerance = 0.0;
-  spec.random_walk = builtin_term('N', 2.0, "deg/sqrt(h)");
-  spec.bias_instability = builtin_term('B', 0.007, "deg/s");
-  spec.range = SpecRating{300.0, "deg/s", 300.0 * units::deg_to_rad};
-  spec.bandwidth = SpecRating{330.0, "Hz", 330.0};
-  return spec;
+  return builtin_gyro("adis16405",
+                      "ADIS16405 MEMS IMU gyroscopes (Analog Devices), datasheet at +25 degC; "
+                      "digital output, 0.05 deg/s LSB",
+                      builtin_term('N', 2.0, "deg/sqrt(h)"), builtin_term('B', 0.007, "deg/s"),
+                      300.0, 330.0);
 }
 
 }  // namespace
