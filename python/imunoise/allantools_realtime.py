@@ -69,8 +69,12 @@ class dev_realtime:
         return self.dev
 
 
-class oadev_realtime(dev_realtime):
-    """Overlapping Allan deviation, updated per sample (sum of squared second differences S)."""
+class _difference_realtime(dev_realtime):
+    """A deviation from the running sum S of squared differences of the phase, updated per
+    sample; subclasses give the difference's weights (newest sample first) and its norm."""
+
+    _weights = ()
+    _norm = 1.0
 
     def _reset_state(self, k):
         self.S = np.zeros(k)
@@ -80,27 +84,27 @@ class oadev_realtime(dev_realtime):
 
     def _update(self, idx, af, i):
         x = self.x
-        if i < 2 * af:
+        order = len(self._weights) - 1
+        if i < order * af:
             return
-        self.S[idx] += (x[i] - 2 * x[i - af] + x[i - 2 * af]) ** 2
-        self.dev[idx] = np.sqrt(self.S[idx] / (2 * (af * self.tau0) ** 2 * (i + 1 - 2 * af)))
+        d = sum(w * x[i - j * af] for j, w in enumerate(self._weights))
+        self.S[idx] += d ** 2
+        self.dev[idx] = np.sqrt(
+            self.S[idx] / (self._norm * (af * self.tau0) ** 2 * (i + 1 - order * af)))
 
 
-class ohdev_realtime(dev_realtime):
+class oadev_realtime(_difference_realtime):
+    """Overlapping Allan deviation, updated per sample (squared second differences)."""
+
+    _weights = (1, -2, 1)
+    _norm = 2.0
+
+
+class ohdev_realtime(_difference_realtime):
     """Overlapping Hadamard deviation, updated per sample (squared third differences)."""
 
-    def _reset_state(self, k):
-        self.S = np.zeros(k)
-
-    def _append_state(self):
-        self.S = np.append(self.S, 0.0)
-
-    def _update(self, idx, af, i):
-        x = self.x
-        if i < 3 * af:
-            return
-        self.S[idx] += (x[i] - 3 * x[i - af] + 3 * x[i - 2 * af] - x[i - 3 * af]) ** 2
-        self.dev[idx] = np.sqrt(self.S[idx] / (6 * (af * self.tau0) ** 2 * (i + 1 - 3 * af)))
+    _weights = (1, -3, 3, -1)
+    _norm = 6.0
 
 
 class tdev_realtime(dev_realtime):
