@@ -2,6 +2,7 @@
 // Runs the imunoise executable as a user would, capturing exit code, stdout and stderr.
 #include <sys/wait.h>
 
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -47,6 +48,17 @@ inline std::string slurp(const std::string& path) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+/// One value per line, to the last bit (%.17g): the text a user's file would hold.
+inline std::string column_text(const std::vector<double>& values) {
+  std::string s;
+  char buf[64];
+  for (double v : values) {
+    std::snprintf(buf, sizeof buf, "%.17g\n", v);
+    s += buf;
+  }
+  return s;
 }
 
 inline std::string quote(const std::string& arg) {

@@ -12,18 +12,9 @@
 namespace imunoise {
 namespace {
 
+using test::column_text;
 using test::run_cli;
 using test::TempDir;
-
-std::string column_text(const std::vector<double>& values) {
-  std::string s;
-  char buf[64];
-  for (double v : values) {
-    std::snprintf(buf, sizeof buf, "%.17g\n", v);
-    s += buf;
-  }
-  return s;
-}
 
 void expect_input_error(const test::CliResult& r, const std::vector<std::string>& fragments) {
   EXPECT_EQ(r.exit_code, 1) << r.err;

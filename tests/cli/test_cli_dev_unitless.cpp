@@ -17,28 +17,9 @@
 namespace imunoise {
 namespace {
 
+using test::column_text;
 using test::run_cli;
 using test::TempDir;
-
-std::string column_text(const std::vector<double>& values) {
-  std::string s;
-  char buf[64];
-  for (double v : values) {
-    std::snprintf(buf, sizeof buf, "%.17g\n", v);
-    s += buf;
-  }
-  return s;
-}
-
-// Stable32's PHASE.DAT: the NBS14 1000-point frequency set, mean removed, integrated from 0
-// (references.md), 1001 phase points in seconds at tau0 = 1 s.
-std::vector<double> phase_dat() {
-  const auto y = test::nbs14_1000_point_frequency();
-  const double mean = std::accumulate(y.begin(), y.end(), 0.0) / static_cast<double>(y.size());
-  std::vector<double> x{0.0};
-  for (double v : y) x.push_back(x.back() + (v - mean));
-  return x;
-}
 
 bool reports_angle_unit(const std::string& estimator) {
   return estimator == "tdev" || estimator == "ttotdev" || estimator == "mtie" || estimator == "tierms";
@@ -61,7 +42,7 @@ class CliDevUnitless : public ::testing::TestWithParam<std::string> {};
 TEST_P(CliDevUnitless, PhaseInput) {
   const std::string estimator = GetParam();
   TempDir dir;
-  const auto file = dir.write("phase.txt", column_text(phase_dat()));
+  const auto file = dir.write("phase.txt", column_text(test::nbs14_phase_dat()));
   for (const char* phase_name : {"phase", "angle"}) {
     for (const bool ci : {true, false}) {
       std::vector<std::string> args = {"dev", file, "--rate", "1", "--input", phase_name,
@@ -95,7 +76,7 @@ TEST_P(CliDevUnitless, FrequencyInput) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Every, CliDevUnitless, ::testing::ValuesIn(kEstimators),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& param_info) { return param_info.param; });
 
 // Values in the input unit: unitless phase gives the published NBS14 10-point tdev and mdev
 // (SP 1065; references.md) and Stable32's PHASE.DAT MTIE and TIE rms rows, unscaled.
@@ -114,7 +95,7 @@ TEST(CliDevUnitlessValues, PublishedNumbersFromUnitlessPhase) {
   EXPECT_EQ(j[0]["unit"], "input unit");
   EXPECT_EQ(j[1]["unit"], "input unit/s");
 
-  const auto phase = dir.write("phase.txt", column_text(phase_dat()));
+  const auto phase = dir.write("phase.txt", column_text(test::nbs14_phase_dat()));
   j = run_json({"dev", phase, "--rate", "1", "--input", "phase", "--estimator", "mtie",
                 "--af", "3", "--format", "json"});
   ASSERT_FALSE(j.is_null());
@@ -130,7 +111,7 @@ TEST(CliDevUnitlessValues, PublishedNumbersFromUnitlessPhase) {
 // Unitless phase and the same record declared in seconds (--units s) give the same numbers.
 TEST(CliDevUnitlessValues, SameAsSecondsDeclared) {
   TempDir dir;
-  const auto phase = dir.write("phase.txt", column_text(phase_dat()));
+  const auto phase = dir.write("phase.txt", column_text(test::nbs14_phase_dat()));
   for (const char* estimator : {"tdev", "ttotdev", "mtie", "tierms", "oadev"}) {
     const auto bare = run_json({"dev", phase, "--rate", "1", "--input", "phase", "--estimator",
                                 estimator, "--format", "json", "--no-ci"});

@@ -11,31 +11,11 @@
 #include "imunoise/confidence/fill_confidence.hpp"
 #include "imunoise/deviation.hpp"
 #include "imunoise/error.hpp"
+#include "core/nbs14.hpp"
 #include "power_law_noise.hpp"
 
 namespace imunoise {
 namespace {
-
-// PHASE.DAT: the NBS14 1000-point frequency set (Lehmer generator) integrated to phase about its
-// mean, x0 = 0, tau0 = 1 s (references.md).
-std::vector<double> phase_dat() {
-  std::vector<double> y;
-  std::uint64_t n = 1234567890;
-  for (int i = 0; i < 1000; ++i) {
-    y.push_back(static_cast<double>(n) / 2147483647.0);
-    n = (16807 * n) % 2147483647;
-  }
-  long double mean = 0;
-  for (double v : y) mean += v;
-  mean /= 1000;
-  std::vector<double> x{0.0};
-  long double sum = 0;
-  for (double v : y) {
-    sum += v - mean;
-    x.push_back(static_cast<double>(sum));
-  }
-  return x;
-}
 
 double rel(double a, double b) { return std::fabs(a / b - 1.0); }
 
@@ -45,7 +25,7 @@ TEST(FillConfidence, ReproducesStable32OnPhaseDat) {
   // Measured: bounds within 1.5e-4 (m = 1) and 9e-5 (m = 128). White FM is identified at m = 1
   // (lag-1 ACF); at m = 128 only 7 rate averages remain, too few for B1, and the noise type of
   // the previous tau is used, as Stable32 does.
-  const std::vector<double> x = phase_dat();
+  const std::vector<double> x = test::nbs14_phase_dat();
   const std::vector<std::size_t> factors{1, 128};
   std::vector<DevPoint> points = compute_deviation(Estimator::oadev, x, 1.0, factors);
   ASSERT_EQ(points.size(), 2u);
@@ -76,7 +56,7 @@ TEST(FillConfidence, ReproducesStable32OnPhaseDat) {
 
 TEST(FillConfidence, OtherPhaseDatRows) {
   // mdev and non-overlapping hdev at m = 2 (references.md), identified as white FM.
-  const std::vector<double> x = phase_dat();
+  const std::vector<double> x = test::nbs14_phase_dat();
   const std::vector<std::size_t> factors{2};
   std::vector<DevPoint> mdev = compute_deviation(Estimator::mdev, x, 1.0, factors);
   fill_confidence(mdev, Estimator::mdev, x);
@@ -93,7 +73,7 @@ TEST(FillConfidence, OtherPhaseDatRows) {
 }
 
 TEST(FillConfidence, ForcedNoiseTypeAndLevel) {
-  const std::vector<double> x = phase_dat();
+  const std::vector<double> x = test::nbs14_phase_dat();
   const std::vector<std::size_t> factors{1, 8, 64};
   std::vector<DevPoint> points = compute_deviation(Estimator::oadev, x, 1.0, factors);
   ConfidenceOptions options;

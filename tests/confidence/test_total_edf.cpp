@@ -12,19 +12,10 @@
 #include "imunoise/deviation.hpp"
 #include "imunoise/phase.hpp"
 #include "imunoise/total.hpp"
+#include "core/nbs14.hpp"
 
 namespace imunoise {
 namespace {
-
-std::vector<double> phase_dat() {
-  std::vector<double> y;
-  std::uint64_t n = 1234567890;
-  for (int i = 0; i < 1000; ++i) {
-    y.push_back(static_cast<double>(n) / 2147483647.0);
-    n = (16807 * n) % 2147483647;
-  }
-  return phase_from_rate(y, 1.0, compensated_mean(y));
-}
 
 TEST(TotalEdf, Sp1065Formulas) {
   // totdev, Table 7: b N/m - c.
@@ -60,7 +51,7 @@ TEST(TotalEdf, Sp1065Formulas) {
 // SP 1065's white-FM EDF 1.5 N/m = 750.75 gives bounds within 1.1e-4 and 1.8e-4 relative of the
 // printed ones (the 5-digit printing alone allows 5e-5; Stable32's own EDF is ~1% higher).
 TEST(TotalEdf, TotdevBoundsNearStable32) {
-  const auto x = phase_dat();
+  const auto x = test::nbs14_phase_dat();
   std::vector<std::size_t> factors{2};
   auto points = compute_deviation(Estimator::totdev, x, 1.0, factors);
   const auto info = fill_confidence(points, Estimator::totdev, x, 0.683);
@@ -73,7 +64,7 @@ TEST(TotalEdf, TotdevBoundsNearStable32) {
 // Every new estimator goes through fill_confidence: noise identified through its
 // finite-difference proxy, an EDF where one is defined, none for MTIE / TIE rms.
 TEST(TotalEdf, FillConfidenceForEveryEstimator) {
-  const auto x = phase_dat();
+  const auto x = test::nbs14_phase_dat();
   for (const Estimator e : {Estimator::totdev, Estimator::mtotdev, Estimator::ttotdev,
                             Estimator::htotdev, Estimator::theo1, Estimator::mtie,
                             Estimator::tierms}) {
@@ -97,7 +88,7 @@ TEST(TotalEdf, FillConfidenceForEveryEstimator) {
 // Stable32 1.60, PHASE.DAT htotdev AF 2: 2.0247e-01 raw (alpha = 2: no correction) and
 // 2.0297e-01 bias-corrected for white FM (alpha = 0).
 TEST(TotalBias, HtotdevMatchesStable32) {
-  const auto x = phase_dat();
+  const auto x = test::nbs14_phase_dat();
   std::vector<std::size_t> factors{2};
   auto points = compute_deviation(Estimator::htotdev, x, 1.0, factors);
   points[0].alpha = 0;

@@ -22,4 +22,20 @@ inline std::vector<double> nbs14_1000_point_frequency() {
   return y;
 }
 
+/// Stable32's PHASE.DAT: the 1000-point set integrated to phase about its mean (long double
+/// sums), x0 = 0: 1001 phase points in seconds at tau0 = 1 s (references.md).
+inline std::vector<double> nbs14_phase_dat() {
+  const auto y = nbs14_1000_point_frequency();
+  long double mean = 0;
+  for (double v : y) mean += v;
+  mean /= static_cast<long double>(y.size());
+  std::vector<double> x{0.0};
+  long double sum = 0;
+  for (double v : y) {
+    sum += v - mean;
+    x.push_back(static_cast<double>(sum));
+  }
+  return x;
+}
+
 }  // namespace imunoise::test
