@@ -21,17 +21,12 @@
 #include "imunoise/phase.hpp"
 #include "imunoise/total.hpp"
 
+#include "array_view.hpp"
+
 namespace py = pybind11;
 
 namespace imunoise::python {
 namespace {
-
-using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-std::span<const double> view(const Array& a) {
-  if (a.ndim() != 1) throw InputError("data must be a 1-D array, got " + std::to_string(a.ndim()) + "-D");
-  return {a.data(), static_cast<std::size_t>(a.shape(0))};
-}
 
 // (devs, ns) of `name` on phase samples at each averaging factor, both float64 arrays as
 // AllanTools returns them. totdev runs over its whole reflected range m <= N-1 (AllanTools);

@@ -16,17 +16,12 @@
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
 
+#include "array_view.hpp"
+
 namespace py = pybind11;
 
 namespace imunoise::python {
 namespace {
-
-using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-std::span<const double> view(const Array& a) {
-  if (a.ndim() != 1) throw InputError("data must be a 1-D array, got " + std::to_string(a.ndim()) + "-D");
-  return {a.data(), static_cast<std::size_t>(a.shape(0))};
-}
 
 // Every phase sample enters some term of an overlapping difference of order r at factor m when
 // N >= (r + 1) m (the index ranges [j m, j m + n - 1], j = 0..r, then join up), and a

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "difference_sums.hpp"
+#include "domain_check.hpp"
 #include "imunoise/allan.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/hadamard.hpp"
@@ -14,23 +15,6 @@
 
 namespace imunoise {
 namespace {
-
-// Checks what every estimator needs before any work is done.
-void require_domain(Estimator estimator, std::span<const double> phase, double tau0_s,
-                    std::span<const std::size_t> factors) {
-  if (!(tau0_s > 0.0) || !std::isfinite(tau0_s)) {
-    throw InputError("the sample interval must be positive and finite, got " +
-                     std::to_string(tau0_s) + " s; check --rate");
-  }
-  const std::size_t max_m = max_averaging_factor(estimator, phase.size());
-  for (const std::size_t m : factors) {
-    if (m == 0 || m > max_m) {
-      throw InputError(std::string(estimator_name(estimator)) + ": averaging factor m = " +
-                       std::to_string(m) + " is outside the domain 1.." + std::to_string(max_m) +
-                       " for " + std::to_string(phase.size()) + " phase samples");
-    }
-  }
-}
 
 // sigma = sqrt(sum_sq / (divisor * n)) / tau, the shape shared by every estimator here.
 std::vector<DevPoint> scale(const detail::DifferenceSums& sums, double tau0_s,
@@ -54,20 +38,20 @@ std::vector<DevPoint> scale(const detail::DifferenceSums& sums, double tau0_s,
 
 std::vector<DevPoint> adev(std::span<const double> phase, double tau0_s,
                            std::span<const std::size_t> factors, const DevOptions&) {
-  require_domain(Estimator::adev, phase, tau0_s, factors);
+  detail::check_factors(Estimator::adev, phase, tau0_s, factors);
   return scale(detail::strided_difference_sums(phase, 2, factors), tau0_s, factors, 2.0, false);
 }
 
 std::vector<DevPoint> oadev(std::span<const double> phase, double tau0_s,
                             std::span<const std::size_t> factors, const DevOptions& options) {
-  require_domain(Estimator::oadev, phase, tau0_s, factors);
+  detail::check_factors(Estimator::oadev, phase, tau0_s, factors);
   return scale(detail::overlapping_difference_sums(phase, 2, factors, options.threads), tau0_s,
                factors, 2.0, false);
 }
 
 std::vector<DevPoint> mdev(std::span<const double> phase, double tau0_s,
                            std::span<const std::size_t> factors, const DevOptions& options) {
-  require_domain(Estimator::mdev, phase, tau0_s, factors);
+  detail::check_factors(Estimator::mdev, phase, tau0_s, factors);
   return scale(detail::modified_difference_sums(phase, factors, options.threads), tau0_s,
                factors, 2.0, true);
 }
@@ -81,13 +65,13 @@ std::vector<DevPoint> tdev(std::span<const double> phase, double tau0_s,
 
 std::vector<DevPoint> hdev(std::span<const double> phase, double tau0_s,
                            std::span<const std::size_t> factors, const DevOptions&) {
-  require_domain(Estimator::hdev, phase, tau0_s, factors);
+  detail::check_factors(Estimator::hdev, phase, tau0_s, factors);
   return scale(detail::strided_difference_sums(phase, 3, factors), tau0_s, factors, 6.0, false);
 }
 
 std::vector<DevPoint> ohdev(std::span<const double> phase, double tau0_s,
                             std::span<const std::size_t> factors, const DevOptions& options) {
-  require_domain(Estimator::ohdev, phase, tau0_s, factors);
+  detail::check_factors(Estimator::ohdev, phase, tau0_s, factors);
   return scale(detail::overlapping_difference_sums(phase, 3, factors, options.threads), tau0_s,
                factors, 6.0, false);
 }

@@ -1,5 +1,5 @@
 #pragma once
-// Input checks shared by the total, Theo and time-error estimators.
+// Input checks shared by every estimator: a usable sample interval, factors in the domain.
 #include <cmath>
 #include <cstddef>
 #include <span>
