@@ -83,14 +83,24 @@ std::string render(const DevOptionsCli& options, const study::Record& record,
 }
 
 // --mpi: the record is read in slices by the ranks and the mergeable sums are merged in a tree
-// (distributed_record.hpp); rank 0 prints. No confidence intervals: the noise identification
-// needs the whole record in one place.
+// (distributed_record.hpp); rank 0 prints. The noise type behind each interval is identified on
+// rank 0's own slice (the whole record never gathers in one place); the EDF counts every sample.
 void run_dev_mpi(const DevOptionsCli& options, const std::vector<Estimator>& estimators,
-                 const TauGrid& grid) {
+                 const TauGrid& grid, std::optional<int> forced_alpha) {
   if (options.bias_correct) throw InputError("--bias-correct does not apply to --mpi's estimators");
   const DistributedCurves dist = distributed_deviations(options.input, estimators, grid);
   if (!dist.root) return;
   const study::Record record = to_study_record(PhaseRecord(dist.record));
+  ConfidenceOptions confidence;
+  confidence.level = options.ci_level;
+  confidence.forced_alpha = forced_alpha;
+  confidence.threads = options.threads;
+  confidence.n_phase_total = dist.n_phase;
+  const std::string note =
+      options.no_ci ? "--mpi: sums merged over the ranks; no confidence intervals (--no-ci)"
+                    : "--mpi: sums merged over the ranks; noise type identified on rank 0's slice (" +
+                          std::to_string(dist.root_phase_si.size()) + " of " +
+                          std::to_string(dist.n_phase) + " phase points), EDF over the whole record";
   std::vector<study::Curve> curves;
   for (std::size_t i = 0; i < estimators.size(); ++i) {
     const Estimator estimator = estimators[i];
@@ -99,11 +109,10 @@ void run_dev_mpi(const DevOptionsCli& options, const std::vector<Estimator>& est
         integrated ? integral_unit(dist.record.rate_unit).to_si : dist.record.rate_unit.to_si;
     auto points = dist.curves[i];
     for (auto& p : points) p.dev /= to_si;
+    std::vector<PointConfidence> info;
+    if (!options.no_ci) info = fill_confidence(points, estimator, dist.root_phase_si, confidence);
     curves.push_back({estimator, std::string(estimator_name(estimator)), std::move(points),
-                      unit_label(dist.record, integrated), {}, {},
-                      "--mpi: sums merged over the ranks; no confidence intervals (the noise "
-                      "identification needs the whole record in one place)",
-                      std::nullopt});
+                      unit_label(dist.record, integrated), std::move(info), {}, note, std::nullopt});
   }
   write_output(options.output, render(options, record, curves));
 }
@@ -124,9 +133,10 @@ void run_dev(const DevOptionsCli& options) {
       options.noise_type.empty() ? std::nullopt : std::optional<int>(parse_noise_type(options.noise_type));
   const TheoBrRatios theobr_ratios = parse_theobr_ratios(options.theobr_ratios);
   if (options.mpi) {
-    run_dev_mpi(options, estimators, grid);
+    run_dev_mpi(options, estimators, grid, forced_alpha);
     return;
   }
+
   PhaseRecord loaded = load_phase(options.input);
   // to_study_record moves the samples, the source and the timing; the provenance stays here.
   const study::Record record = to_study_record(std::move(loaded));

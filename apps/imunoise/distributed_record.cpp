@@ -159,7 +159,7 @@ DistributedCurves distributed_deviations(const InputOptions& input,
   }
   check_together(error, world.rank);
   out.record = plan.meta;
-  const Slice slice = plan.binary ? read_binary_slice(plan, input.file, world, out.n_phase)
+  Slice slice = plan.binary ? read_binary_slice(plan, input.file, world, out.n_phase)
                                   : scatter_text(input, world, out.record, out.n_phase);
   if (plan.binary) out.record.n_samples = plan.meta.kind == InputKind::rate ? out.n_phase - 1 : out.n_phase;
   out.record.phase_si.clear();
@@ -180,6 +180,7 @@ DistributedCurves distributed_deviations(const InputOptions& input,
                     });
     if (out.root) out.curves.push_back(acc.deviations(tau0_s));
   }
+  if (out.root) out.root_phase_si = std::move(slice.phase_si);
   return out;
 }
 

@@ -29,6 +29,9 @@ struct DistributedCurves {
   PhaseRecord record;                         ///< description (phase_si empty); valid on rank 0
   std::size_t n_phase = 0;                    ///< phase samples of the whole record
   std::vector<std::vector<DevPoint>> curves;  ///< per estimator, SI, no confidence (rank 0)
+  /// Rank 0's own slice of the phase (SI), the first ~n_phase/P points: enough to identify the
+  /// noise type at all but the longest taus; kept, not gathered, so memory stays bounded.
+  std::vector<double> root_phase_si;
 };
 
 /// The estimators a distributed run can compute (mergeable): adev oadev mdev tdev hdev ohdev.

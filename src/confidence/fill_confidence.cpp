@@ -42,7 +42,12 @@ std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Esti
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return points[a].m < points[b].m; });
 
-  const std::size_t n_phase = phase.size();
+  if (options.n_phase_total != 0 && options.n_phase_total < phase.size()) {
+    throw InputError("the record has " + std::to_string(options.n_phase_total) +
+                     " phase points, fewer than the " + std::to_string(phase.size()) +
+                     " given for the noise identification");
+  }
+  const std::size_t n_phase = options.n_phase_total != 0 ? options.n_phase_total : phase.size();
   // Identification at each tau reads only the phase, so the taus are identified side by side
   // (each result lands in its own slot: the outcome cannot depend on the thread count); the
   // fallback to the previous tau's noise type below is then applied in increasing m.

@@ -140,7 +140,66 @@ TEST_P(MpiRanks, BadSampleInOneSliceStopsEveryRankWithTheRecord) {
   EXPECT_NE(r.err.find("record 8000"), std::string::npos) << r.err;
 }
 
+// Intervals under --mpi: the noise type is identified on rank 0's slice, the EDF counts the
+// whole record. Where the slice gives the serial run's noise type, EDF and bounds equal the
+// serial ones (the EDF is a function of alpha, m and N only); white + random-walk FM has a clear
+// type at almost every tau, so most taus must agree, and each disagreement is a neighbouring type.
+TEST_P(MpiRanks, DevIntervalsCountTheWholeRecord) {
+  IMUNOISE_REQUIRE_MPI();
+  TempDir dir;
+  const auto file = write_record(dir, "gyro.f64", 100003);
+  const auto serial = run_cli({"dev", file, "--rate", "100", "--estimator", "oadev,mdev",
+                               "--format", "json"});
+  ASSERT_EQ(serial.exit_code, 0) << serial.err;
+  const auto parallel = run_mpi(GetParam(), {"dev", file, "--rate", "100", "--mpi", "--estimator",
+                                             "oadev,mdev", "--format", "json"});
+  ASSERT_EQ(parallel.exit_code, 0) << parallel.err;
+  const auto a = nlohmann::json::parse(serial.out);
+  const auto b = nlohmann::json::parse(parallel.out);
+  ASSERT_EQ(a.size(), b.size());
+  std::size_t points = 0, same_type = 0;
+  for (std::size_t c = 0; c < a.size(); ++c) {
+    for (std::size_t i = 0; i < a[c]["points"].size(); ++i) {
+      const auto& p = a[c]["points"][i];
+      const auto& q = b[c]["points"][i];
+      ++points;
+      ASSERT_FALSE(q["edf"].is_null()) << "m=" << q["m"];
+      EXPECT_LE(std::abs(p["alpha"].get<int>() - q["alpha"].get<int>()), 1) << "m=" << p["m"];
+      if (p["alpha"] != q["alpha"]) continue;
+      ++same_type;
+      EXPECT_NEAR(q["edf"].get<double>() / p["edf"].get<double>(), 1.0, 1e-12) << "m=" << p["m"];
+      EXPECT_NEAR(q["ci_low"].get<double>() / p["ci_low"].get<double>(), 1.0, 1e-9);
+      EXPECT_NEAR(q["ci_high"].get<double>() / p["ci_high"].get<double>(), 1.0, 1e-9);
+    }
+  }
+  EXPECT_GE(static_cast<double>(same_type), 0.8 * static_cast<double>(points))
+      << same_type << " of " << points << " taus";
+}
+
 INSTANTIATE_TEST_SUITE_P(Fleet, MpiRanks, ::testing::Values(2, 3));
+
+TEST(MpiRecord, PlainRunIntervalsEqualSerial) {
+  TempDir dir;
+  const auto file = write_record(dir, "gyro.f64");
+  const auto serial = run_cli({"dev", file, "--rate", "100", "--estimator", kAll, "--format", "json"});
+  const auto single = run_cli({"dev", file, "--rate", "100", "--mpi", "--estimator", kAll,
+                               "--format", "json"});
+  ASSERT_EQ(serial.exit_code, 0) << serial.err;
+  ASSERT_EQ(single.exit_code, 0) << single.err;
+  const auto a = nlohmann::json::parse(serial.out);
+  const auto b = nlohmann::json::parse(single.out);
+  ASSERT_EQ(a.size(), b.size());
+  for (std::size_t c = 0; c < a.size(); ++c) {
+    ASSERT_EQ(a[c]["points"].size(), b[c]["points"].size());
+    for (std::size_t i = 0; i < a[c]["points"].size(); ++i) {
+      const auto& p = a[c]["points"][i];
+      const auto& q = b[c]["points"][i];
+      EXPECT_EQ(p["alpha"], q["alpha"]) << a[c]["estimator"] << " m=" << p["m"];
+      EXPECT_EQ(p["edf"], q["edf"]) << a[c]["estimator"] << " m=" << p["m"];
+      EXPECT_NEAR(q["ci_high"].get<double>() / p["ci_high"].get<double>(), 1.0, kRelative);
+    }
+  }
+}
 
 TEST(MpiRecord, PlainRunWithMpiFlagIsOneRank) {
   TempDir dir;

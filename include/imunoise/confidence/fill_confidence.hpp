@@ -22,6 +22,10 @@ struct ConfidenceOptions {
   std::optional<int> forced_alpha;
   /// Worker threads for the noise identification (0: all cores); results do not depend on it.
   unsigned threads = 0;
+  /// Phase points of the whole record when `phase` is only its first part (the slice one MPI
+  /// rank holds): the noise type is identified from `phase`, the EDF counts the whole record.
+  /// 0: the record is `phase`.
+  std::size_t n_phase_total = 0;
 };
 
 /// What was done at one point (same order as the points).
