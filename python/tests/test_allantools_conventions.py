@@ -173,7 +173,7 @@ def test_imunoise_top_level_keeps_stable32_conventions():
 
 def test_not_provided_names_say_so():
     with pytest.raises(AttributeError, match="docs/allantools.md"):
-        at.mask
+        at.adev2psd_piecewise_approx
     with pytest.raises(AttributeError):
         at.no_such_function
 
