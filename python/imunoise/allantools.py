@@ -38,6 +38,7 @@ from . import allantools_noise as noise
 from . import allantools_realtime as realtime
 from .allantools_dataset import Dataset, Plot
 from .allantools_kasdin import Noise
+from .allantools_psd import adev2psd_piecewise_approx, psd_piecewise_to_adev
 from .allantools_realtime import oadev_realtime, ohdev_realtime, tdev_realtime
 
 # AllanTools is a package whose submodules scripts reach as attributes: allantools.allantools
@@ -62,11 +63,8 @@ __all__ = [
     "edf_totdev", "edf_mtotdev", "confidence_interval", "confidence_interval_noiseID",
     "autocorr_noise_id", "tau_generator", "tau_reduction", "remove_small_ns", "input_to_phase",
     "ONE_SIGMA_CI", "Dataset", "Plot", "Noise", "oadev_realtime", "ohdev_realtime",
-    "tdev_realtime",
+    "tdev_realtime", "adev2psd_piecewise_approx", "psd_piecewise_to_adev",
 ]
-
-# AllanTools names this module does not provide (docs/allantools.md says why).
-_NOT_PROVIDED = {"adev2psd_piecewise_approx", "psd_piecewise_to_adev"}
 
 # The names under which AllanTools' package and submodules are imported, and what each is here.
 _SUBMODULES = {"": "allantools", ".allantools": "allantools", ".ci": "ci", ".dataset": "dataset",
@@ -96,14 +94,6 @@ def register_as_allantools(name="allantools"):
                 f"({getattr(present, '__file__', present)!r}); call it before importing AllanTools")
     sys.modules.update(targets)
     return me
-
-
-def __getattr__(name):
-    if name in _NOT_PROVIDED:
-        raise AttributeError(
-            f"imunoise.allantools does not provide AllanTools' {name!r}; see docs/allantools.md "
-            "for what is covered and what to use instead")
-    raise AttributeError(f"module 'imunoise.allantools' has no attribute {name!r}")
 
 
 # ---- conversions -------------------------------------------------------------------------
