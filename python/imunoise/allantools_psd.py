@@ -145,17 +145,19 @@ def psd_piecewise_to_adev(h, alpha, f_nodes, taus, vartype="adev"):
 def adev2psd_piecewise_approx(adevs, taus, vartype="adev"):
     """Piecewise power-law PSD of fractional frequency whose deviation follows (taus, adevs).
 
-    The PSD has a node at f = 1/tau for each input tau (neighbouring intervals whose variance
-    slopes mu agree within 1e-6 are merged, so one power law gives two nodes) and is the power
-    law through consecutive nodes; the end segments extend to f = 0 and to infinity. For one
-    power law tau^mu the result is closed form: alpha = -mu - 1 and h from
-    sigma^2 = c h pi^mu tau^mu J(alpha). With several, the node values start from each
-    interval's own power law and are scaled until psd_piecewise_to_adev of the whole PSD equals
-    the input at every node tau (to 1e-10).
+    Between consecutive taus the variance is a power law tau^mu (neighbouring intervals whose
+    slopes agree within 1e-6 are merged), which gives the PSD slope alpha = -mu - 1 on the band
+    1/tau_(i+1) .. 1/tau_i; the end segments extend to f = 0 and to infinity. For one power law
+    h is closed form: sigma^2 = c h pi^mu tau^mu J(alpha). With several, the variance is linear
+    in the intensities, and h >= 0 is the relative least-squares fit of the variance of the
+    whole PSD (psd_piecewise_to_adev) to every input point (NNLS, Lawson & Hanson). The PSD is
+    then not continuous at the nodes; the fit is as close as the slopes allow (a few percent on
+    smooth specifications, exact for one power law).
 
-    Returns (f_nodes, Sy_nodes, h, alpha): f_nodes = 1/tau of the nodes in increasing frequency
-    (len(h) + 1 values), Sy_nodes the PSD there, h and alpha per segment in increasing
-    frequency. vartype "adev" (Allan, needs -2 < mu < 2) or
+    Returns (f_nodes, Sy_nodes, h, alpha): f_nodes = 1/tau at the interval ends in increasing
+    frequency (len(h) + 1 values; the first and last only label the span), Sy_nodes the PSD at
+    each node from the segment starting there (the last from the last segment), h and alpha
+    per segment in increasing frequency. vartype "adev" (Allan, needs -2 < mu < 2) or
     "hdev" (Hadamard, -2 < mu < 4); else, or for too few or bad points, ValueError.
     """
     p, c, (lo, hi) = _kernel(vartype)
@@ -181,34 +183,48 @@ def adev2psd_piecewise_approx(adevs, taus, vartype="adev"):
     keep = [0] + [i + 1 for i in range(len(mu) - 1) if abs(mu[i + 1] - mu[i]) > 1e-6] + [len(taus) - 1]
     t_nodes, v_nodes = taus[keep], var[keep]
     mu = np.diff(np.log(v_nodes)) / np.diff(np.log(t_nodes))
-    # Start: each interval's power law on its own, sigma^2 = c h pi^mu tau^mu J(alpha) with J
-    # over 0..inf, gives the PSD at the interval's two nodes; a node between two intervals
-    # takes the geometric mean of the two values.
-    alpha_t = -mu - 1.0
-    j_full = np.array([_sine_integral(p, a, 0.0, math.inf) for a in alpha_t])
-    h_t = v_nodes[:-1] / t_nodes[:-1] ** mu / (c * math.pi ** mu * j_full)
-    f_t = 1.0 / t_nodes
-    left, right = h_t * f_t[:-1] ** alpha_t, h_t * f_t[1:] ** alpha_t
-    sy = np.concatenate(([left[0]], np.sqrt(left[1:] * right[:-1]), [right[-1]]))
-    # Then the PSD is the power law through consecutive nodes (continuous), and the node values
-    # are scaled until the deviation of the whole PSD equals the input at every node tau.
-    f_nodes, sy = f_t[::-1], sy[::-1]
-    targets = v_nodes[::-1]
-    if len(sy) > 2:
-        for _ in range(500):
-            h, alpha = _through_nodes(f_nodes, sy)
-            if alpha[0] <= lo or alpha[-1] >= hi:
-                raise ValueError(f"{vartype}: no piecewise power law converges for these points "
-                                 "(an end segment leaves the convergent range)")
-            ratio = targets / psd_piecewise_to_adev(h, alpha, f_nodes, 1.0 / f_nodes, vartype) ** 2
-            sy = sy * ratio
-            if np.max(np.abs(ratio - 1.0)) < 1e-10:
+    # segments in increasing frequency: interval i (tau_i .. tau_i+1) is the band 1/tau_i+1 .. 1/tau_i
+    alpha = (-mu - 1.0)[::-1].copy()
+    f_nodes = (1.0 / t_nodes)[::-1].copy()
+    if len(alpha) == 1:
+        # one power law sigma^2 = B tau^mu: sigma^2 = c h pi^mu tau^mu J(alpha), J over 0..inf
+        j_full = _sine_integral(p, alpha[0], 0.0, math.inf)
+        h = np.array([v_nodes[0] / t_nodes[0] ** mu[0] / (c * math.pi ** mu[0] * j_full)])
+    else:
+        # variance at each node tau = sum_k h_k * (unit-intensity variance of segment k); the
+        # intensities h >= 0 that fit every node in relative least squares
+        bounds = np.concatenate(([0.0], f_nodes[1:-1], [math.inf]))
+        unit = np.array([[c * (math.pi * tau) ** (-a - 1.0)
+                          * _sine_integral(p, a, math.pi * tau * bounds[k], math.pi * tau * bounds[k + 1])
+                          for k, a in enumerate(alpha)] for tau in t_nodes])
+        design = unit / v_nodes[:, None]
+        scale = np.linalg.norm(design, axis=0)  # the h span decades: solve for h * scale
+        h = _nonnegative_least_squares(design / scale, np.ones(len(t_nodes))) / scale
+        if not np.any(h > 0):
+            raise ValueError(f"{vartype}: no piecewise power law with these slopes fits the points")
+    sy_nodes = np.concatenate((h * f_nodes[:-1] ** alpha, [h[-1] * f_nodes[-1] ** alpha[-1]]))
+    return f_nodes, sy_nodes, h, alpha
+
+
+def _nonnegative_least_squares(a, b, iterations=200):
+    """argmin ||a x - b|| subject to x >= 0 (Lawson & Hanson's active-set method)."""
+    n = a.shape[1]
+    x = np.zeros(n)
+    passive = np.zeros(n, dtype=bool)
+    tol = 1e-12 * max(1.0, float(np.abs(a).max()))
+    for _ in range(iterations):
+        w = a.T @ (b - a @ x)
+        if passive.all() or np.max(np.where(passive, -np.inf, w)) <= tol:
+            break
+        passive[int(np.argmax(np.where(passive, -np.inf, w)))] = True
+        while True:
+            z = np.zeros(n)
+            z[passive] = np.linalg.lstsq(a[:, passive], b, rcond=None)[0]
+            if np.all(z[passive] > 0):
+                x = z
                 break
-    h, alpha = _through_nodes(f_nodes, sy)
-    return f_nodes, sy, h, alpha
-
-
-def _through_nodes(f_nodes, sy):
-    """(h, alpha) of the power laws joining consecutive (f, S_y) nodes."""
-    alpha = np.diff(np.log(sy)) / np.diff(np.log(f_nodes))
-    return sy[:-1] / f_nodes[:-1] ** alpha, alpha
+            neg = passive & (z <= 0)
+            step = np.min(x[neg] / (x[neg] - z[neg]))
+            x = x + step * (z - x)
+            passive &= x > tol
+    return x

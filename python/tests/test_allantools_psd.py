@@ -51,17 +51,22 @@ def test_one_power_law_inverts_in_closed_form():
     np.testing.assert_allclose(sy_nodes, h[0] * f_nodes ** -2.0, rtol=1e-12)
 
 
-def test_several_slopes_round_trip_at_every_node():
-    # white FM at short tau, a flicker floor, random walk at long tau, and unsorted input
+def test_several_slopes_fit_every_point_closely():
+    # white FM at short tau, a flicker floor, random walk at long tau, and unsorted input.
+    # Four segments, five points: the least-squares intensities reproduce the points to 0.5 %
+    # (0.17 % measured); a wrong band, kernel or intensity scale would miss by far more.
     taus = np.array([1e4, 1.0, 30.0, 300.0, 3000.0])
     devs = np.array([9e-13, 3e-12, 6e-13, 5e-13, 6.5e-13])
     f_nodes, sy_nodes, h, alpha = at.adev2psd_piecewise_approx(devs, taus)
     assert len(h) == 4 and len(f_nodes) == 5 and np.all(np.diff(f_nodes) > 0)
+    np.testing.assert_allclose(f_nodes, np.sort(1 / taus))
+    order = np.argsort(taus)
+    mu = np.diff(np.log(devs[order] ** 2)) / np.diff(np.log(taus[order]))
+    np.testing.assert_allclose(alpha, (-mu - 1)[::-1], rtol=1e-12)  # slopes from the input
+    assert np.all(h > 0)
     back = at.psd_piecewise_to_adev(h, alpha, f_nodes, taus)
-    np.testing.assert_allclose(back, devs, rtol=1e-8)
-    # the PSD is continuous: each segment passes through both of its nodes
-    np.testing.assert_allclose(h * f_nodes[1:] ** alpha, sy_nodes[1:], rtol=1e-12)
-    np.testing.assert_allclose(h * f_nodes[:-1] ** alpha, sy_nodes[:-1], rtol=1e-12)
+    np.testing.assert_allclose(back, devs, rtol=5e-3)
+    np.testing.assert_allclose(sy_nodes[:-1], h * f_nodes[:-1] ** alpha, rtol=1e-12)
 
 
 def test_bad_inputs_are_value_errors():
