@@ -26,14 +26,29 @@ Unlike AllanTools, a NaN or infinite sample inside the data raises ``ValueError`
 (AllanTools returns NaN deviations); ``gradev`` alone is meant for gaps and accepts NaN.
 """
 import math
+import sys
 
 import numpy as np
 
 from . import _imunoise as _core
+from . import allantools_dataset as dataset
+from . import allantools_kasdin as noise_kasdin
+from . import allantools_mask as mask
 from . import allantools_noise as noise
+from . import allantools_realtime as realtime
 from .allantools_dataset import Dataset, Plot
 from .allantools_kasdin import Noise
+from .allantools_psd import adev2psd_piecewise_approx, psd_piecewise_to_adev
 from .allantools_realtime import oadev_realtime, ohdev_realtime, tdev_realtime
+
+# AllanTools is a package whose submodules scripts reach as attributes: allantools.allantools
+# (the estimators and helpers, e.g. allantools.allantools.tau_reduction), .ci (intervals and
+# EDFs), .dataset, .plot, .noise, .noise_kasdin, .realtime, .mask. Here the first two are
+# this module itself, the others the allantools_* modules. They are not in __all__, so that
+# `from imunoise.allantools import *` does not bind names such as `mask` or `dataset`.
+allantools = sys.modules[__name__]
+ci = allantools
+plot = dataset
 
 __version__ = "2024.06"  # the AllanTools release whose interface this module follows
 
@@ -48,19 +63,37 @@ __all__ = [
     "edf_totdev", "edf_mtotdev", "confidence_interval", "confidence_interval_noiseID",
     "autocorr_noise_id", "tau_generator", "tau_reduction", "remove_small_ns", "input_to_phase",
     "ONE_SIGMA_CI", "Dataset", "Plot", "Noise", "oadev_realtime", "ohdev_realtime",
-    "tdev_realtime",
+    "tdev_realtime", "adev2psd_piecewise_approx", "psd_piecewise_to_adev",
 ]
 
-# AllanTools names this module does not provide (docs/allantools.md says why).
-_NOT_PROVIDED = {"mask"}
+# The names under which AllanTools' package and submodules are imported, and what each is here.
+_SUBMODULES = {"": "allantools", ".allantools": "allantools", ".ci": "ci", ".dataset": "dataset",
+               ".plot": "plot", ".noise": "noise", ".noise_kasdin": "noise_kasdin",
+               ".realtime": "realtime", ".mask": "mask"}
 
 
-def __getattr__(name):
-    if name in _NOT_PROVIDED:
-        raise AttributeError(
-            f"imunoise.allantools does not provide AllanTools' {name!r}; see docs/allantools.md "
-            "for what is covered and what to use instead")
-    raise AttributeError(f"module 'imunoise.allantools' has no attribute {name!r}")
+def register_as_allantools(name="allantools"):
+    """Makes ``import allantools`` resolve to this module, for scripts that cannot be edited.
+
+    Registers this module in ``sys.modules`` as ``name`` and its submodules as
+    ``name + ".allantools"``, ``".ci"``, ``".dataset"``, ``".plot"``, ``".noise"``,
+    ``".noise_kasdin"``, ``".realtime"`` and ``".mask"``, so that ``import allantools``,
+    ``import allantools.allantools as at``, ``from allantools.dataset import Dataset`` and
+    ``from allantools import noise`` all work. Call it before the script's imports (a shim
+    file named allantools.py may call it while it is itself being imported). If the real
+    AllanTools package is already imported (one of the submodule names is taken by another
+    module), RuntimeError: mixing the two would give results of either at random.
+    """
+    me = sys.modules[__name__]
+    targets = {name + suffix: getattr(me, attr) for suffix, attr in _SUBMODULES.items()}
+    for key, module in targets.items():
+        present = sys.modules.get(key)
+        if key != name and present is not None and present is not module:
+            raise RuntimeError(
+                f"register_as_allantools(): a different module is already imported as {key!r} "
+                f"({getattr(present, '__file__', present)!r}); call it before importing AllanTools")
+    sys.modules.update(targets)
+    return me
 
 
 # ---- conversions -------------------------------------------------------------------------

@@ -64,3 +64,35 @@ def scipy_psd(x, f_sample=1.0, nr_segments=4):
     except ImportError as e:  # pragma: no cover - depends on the machine
         raise ImportError("noise.scipy_psd needs SciPy; use noise.numpy_psd instead") from e
     return scipy.signal.welch(x, f_sample, nperseg=int(len(x) / nr_segments))
+
+
+def timmer_koenig_from_psd(f_nodes, h, alpha, duration, timestep, output="phase", seed=None):
+    """Noise with the piecewise power-law one-sided PSD S_y(f) = h[k] f^alpha[k] (fractional
+    frequency; segments and f_nodes as in ``adev2psd_piecewise_approx``), by Fourier synthesis
+    (Timmer & Koenig 1995): n = round(duration / timestep) samples; at each DFT frequency
+    f_j = j / (n timestep), 0 < j <= n/2, a complex normal coefficient with E|X_j|^2 =
+    S(f_j) n / (2 timestep) (real at the Nyquist bin), the DC bin 0, then the inverse real FFT.
+
+    output "phase": time x in s, S_x = S_y / (2 pi f)^2; "frequency": y. ``seed`` seeds a
+    NumPy Generator (None: a fresh one). The record holds no power below 1 / duration, so
+    deviations at tau above about duration / 10 come out low.
+    """
+    from .allantools_psd import piecewise_psd
+    if output not in ("phase", "frequency"):
+        raise ValueError(f"output must be 'phase' or 'frequency', got {output!r}")
+    if not (timestep > 0 and math.isfinite(timestep) and duration > 0 and math.isfinite(duration)):
+        raise ValueError("duration and timestep must be positive and finite (s)")
+    n = int(round(duration / timestep))
+    if n < 2:
+        raise ValueError(f"duration / timestep = {duration / timestep:g}: need at least 2 samples")
+    rng = np.random.default_rng(seed)
+    f = np.fft.rfftfreq(n, timestep)[1:]
+    psd = piecewise_psd(f, h, alpha, f_nodes)
+    if output == "phase":
+        psd = psd / (2.0 * math.pi * f) ** 2
+    sigma = np.sqrt(psd * n / (4.0 * timestep))  # per real and imaginary part
+    coeff = np.zeros(len(f) + 1, dtype=complex)
+    coeff[1:] = sigma * (rng.standard_normal(len(f)) + 1j * rng.standard_normal(len(f)))
+    if n % 2 == 0:  # the Nyquist coefficient is real: all of E|X|^2 in one part
+        coeff[-1] = math.sqrt(2.0) * sigma[-1] * rng.standard_normal()
+    return np.fft.irfft(coeff, n)

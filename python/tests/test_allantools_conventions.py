@@ -171,9 +171,7 @@ def test_imunoise_top_level_keeps_stable32_conventions():
     assert imunoise.oadev(x, rate=1.0, taus="octave")[3].dtype == np.int64
 
 
-def test_not_provided_names_say_so():
-    with pytest.raises(AttributeError, match="docs/allantools.md"):
-        at.mask
+def test_unknown_names_are_attribute_errors():
     with pytest.raises(AttributeError):
         at.no_such_function
 
