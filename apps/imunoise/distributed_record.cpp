@@ -32,9 +32,10 @@ struct Slice {
   std::vector<double> phase_si;  ///< in the slice's own coordinates
 };
 
+// floor(n rank / size) without overflow: n = q size + r gives q rank + floor(r rank / size).
 std::size_t cut(std::size_t n, int rank, int size) {
-  return static_cast<std::size_t>((static_cast<unsigned __int128>(n) * static_cast<unsigned>(rank)) /
-                                  static_cast<unsigned>(size));
+  const auto r = static_cast<std::size_t>(rank), p = static_cast<std::size_t>(size);
+  return (n / p) * r + (n % p) * r / p;
 }
 
 Slice read_binary_slice(const RecordPlan& plan, const std::string& path, mpi::World world,
