@@ -83,7 +83,15 @@ PipelineResult run_pipeline(const PipelineOptions& options, std::vector<double> 
     }
     temperature.erase(temperature.begin(), temperature.begin() + static_cast<std::ptrdiff_t>(skip));
     const fit::FitOptions fit_options = options.temperature_fit.value_or(fit::FitOptions{});
-    out.temperature_bins = temperature_bins(values, temperature, rate, options.temperature_bin, 1000, &fit_options);
+    // With split gaps a run also ends at each gap: no term of a bin's curve spans one.
+    std::vector<std::size_t> cuts;
+    if (options.split_gaps) {
+      for (const auto b : gap_breaks) {
+        if (b > skip) cuts.push_back(b - skip);
+      }
+    }
+    out.temperature_bins =
+        temperature_bins(values, temperature, rate, options.temperature_bin, 1000, &fit_options, cuts);
     fit::RecordInfo info;
     info.source = source;
     info.rate_hz = rate;

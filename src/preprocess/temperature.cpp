@@ -15,7 +15,8 @@ namespace imunoise::preprocess {
 
 std::vector<TemperatureBin> temperature_bins(std::span<const double> rate_si, std::span<const double> temperature,
                                              double rate_hz, double bin_width, std::size_t min_samples,
-                                             const fit::FitOptions* fit_options) {
+                                             const fit::FitOptions* fit_options,
+                                             std::span<const std::size_t> breaks) {
   if (!(bin_width > 0.0) || !std::isfinite(bin_width)) {
     throw InputError("temperature bin width must be positive, got " + std::to_string(bin_width) +
                      "; fix: pass e.g. --temperature-bin 5");
@@ -24,7 +25,9 @@ std::vector<TemperatureBin> temperature_bins(std::span<const double> rate_si, st
     throw InputError("the temperature channel has " + std::to_string(temperature.size()) + " samples but the rate " +
                      std::to_string(rate_si.size()) + "; fix: give a temperature for every sample");
   }
-  // Runs of consecutive samples in the same bin, grouped by bin.
+  // Runs of consecutive samples in the same bin (and not across a break), grouped by bin.
+  std::vector<std::size_t> cuts(breaks.begin(), breaks.end());
+  std::sort(cuts.begin(), cuts.end());
   std::map<long long, std::vector<Segment>> runs;
   for (std::size_t i = 0; i < temperature.size();) {
     if (!std::isfinite(temperature[i])) {
@@ -33,7 +36,8 @@ std::vector<TemperatureBin> temperature_bins(std::span<const double> rate_si, st
     const auto bin = static_cast<long long>(std::floor(temperature[i] / bin_width));
     std::size_t j = i + 1;
     while (j < temperature.size() && std::isfinite(temperature[j]) &&
-           static_cast<long long>(std::floor(temperature[j] / bin_width)) == bin) {
+           static_cast<long long>(std::floor(temperature[j] / bin_width)) == bin &&
+           !std::binary_search(cuts.begin(), cuts.end(), j)) {
       ++j;
     }
     runs[bin].push_back({i, j});

@@ -105,6 +105,24 @@ TEST(TemperatureFit, ABinTooShortToFitSaysWhyAndTheOthersAreStillFitted) {
   EXPECT_NE(bins[1].fit_error.find("cannot fit a noise model"), std::string::npos) << bins[1].fit_error;
 }
 
+TEST(TemperatureFit, ARunEndsAtAGapBreakSoNoTermSpansTheGap) {
+  // One bin throughout, a break at 5000: two runs, and the pooled curve has the two runs'
+  // terms only (oadev at m = 1: (5000 - 1) + (5000 - 1) second differences).
+  std::vector<double> rate(10'000);
+  std::mt19937_64 rng(43);
+  std::normal_distribution<double> g(0.0, 1e-3);
+  for (auto& x : rate) x = g(rng);
+  const std::vector<double> temperature(rate.size(), 21.0);
+  const std::vector<std::size_t> breaks = {5000};
+  const auto bins = temperature_bins(rate, temperature, 100.0, 5.0, 1000, nullptr, breaks);
+  ASSERT_EQ(bins.size(), 1u);
+  EXPECT_EQ(bins[0].segments, 2u);
+  EXPECT_EQ(bins[0].samples, 10'000u);
+  ASSERT_FALSE(bins[0].oadev.empty());
+  EXPECT_EQ(bins[0].oadev[0].n, 2u * (5000 - 1));
+  EXPECT_FALSE(bins[0].fit.has_value());  // no fit options: read-offs only
+}
+
 TEST(TemperatureFit, FitCommandReportsTheFitPerBin) {
   const auto s = simulate(200'000);
   const auto dir = std::filesystem::temp_directory_path() / ("imunoise_tfit_" + std::to_string(::getpid()));

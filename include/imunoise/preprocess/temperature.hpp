@@ -44,10 +44,12 @@ struct TemperatureBin {
 /// `bin_width`; bins with fewer than `min_samples` samples are left out. Throws InputError for
 /// a non-positive width, mismatched lengths or a non-finite temperature. With `fit_options`,
 /// each bin's pooled oadev is also fitted (a bin whose curve cannot be fitted gets fit_error,
-/// the others are still fitted).
+/// the others are still fitted). `breaks`: samples that start a new run even in the same bin
+/// (the first sample after each timestamp gap of a record split at its gaps).
 std::vector<TemperatureBin> temperature_bins(std::span<const double> rate_si, std::span<const double> temperature,
                                              double rate_hz, double bin_width, std::size_t min_samples = 1000,
-                                             const fit::FitOptions* fit_options = nullptr);
+                                             const fit::FitOptions* fit_options = nullptr,
+                                             std::span<const std::size_t> breaks = {});
 
 /// The bins as a JSON array: range, samples, runs, mean temperature, bias with its standard
 /// error, the N and B read-offs (SI; null when absent) and, when fitted, "fit": the fit's
