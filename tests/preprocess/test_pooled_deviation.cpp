@@ -213,6 +213,11 @@ TEST_F(GapSplit, FiveSecondGapInSixHoursAgreesWithTheGapFreeRecordForEveryEstima
   const auto phase = phase_from_rate(v_, tau0, compensated_mean(v_));
   for (const Estimator e : kPoolable) {
     SCOPED_TRACE(std::string(estimator_name(e)));
+    // Up to half the longest factor a segment allows: at the segment's last octave its few
+    // terms (EDF ~ 2) and the gap-free record's many are nearly independent estimates, which
+    // need not lie in each other's 95 % interval (measured: oadev at m = 2^20 of a 6 h, 200 Hz
+    // record, 2.5e-5 split vs 5.9e-5 gap-free, the gap-free value inside the split's
+    // interval, not the converse).
     std::vector<std::size_t> factors;
     for (std::size_t m = 1; m <= max_averaging_factor(e, cut_.size() / 2) / 2; m *= 4) factors.push_back(m);
     auto full = compute_deviation(e, phase, tau0, factors);
@@ -227,12 +232,12 @@ TEST_F(GapSplit, FiveSecondGapInSixHoursAgreesWithTheGapFreeRecordForEveryEstima
       EXPECT_GE(p.dev, full[j].ci_low);
       EXPECT_LE(p.dev, full[j].ci_high);
       EXPECT_LT(p.n, full[j].n);  // the terms spanning the gap are gone
-      // The split record's own interval contains the gap-free estimate too, and is no narrower
-      // than the gap-free one (it has fewer terms): its EDF is at most the gap-free EDF (+1 %:
-      // the noise type may be identified differently on half the record).
+      // The split record's own interval contains the gap-free estimate too; for the same noise
+      // type its EDF is at most the gap-free EDF (+1 %): fewer terms. (A different type may be
+      // identified on half the record at the long taus, and then its EDF may be larger.)
       EXPECT_GE(full[j].dev, p.ci_low);
       EXPECT_LE(full[j].dev, p.ci_high);
-      EXPECT_LE(p.edf, 1.01 * full[j].edf);
+      if (p.alpha == full[j].alpha) EXPECT_LE(p.edf, 1.01 * full[j].edf);
       EXPECT_GT(p.edf, 0.0);
     }
   }
