@@ -443,13 +443,14 @@ void add_input_options(CLI::App& command, InputOptions& options) {
   command.add_option("--outliers", options.outliers,
                      "spikes by robust MAD: fail, report, or reject (removed; the record split at each)");
   command.add_option("--gaps", options.gaps,
-                     "timestamp gaps: fail (default), or split (segments whose Allan sums are pooled; "
-                     "never interpolated)");
+                     "timestamp gaps: fail (default), or split (segments whose sums are pooled for "
+                     "adev oadev mdev tdev hdev ohdev and the fit; never interpolated)");
   command.add_flag("--davar", options.davar,
                    "dynamic Allan variance (sliding window) and a stationarity verdict");
   command.add_option("--davar-window", options.davar_window_s, "DAVAR window (s); default record / 20");
   command.add_option("--temperature", options.temperature,
-                     "temperature column/channel: bias, N and B reported per temperature bin");
+                     "temperature column/channel: bias and the noise-model fit (Q N B K with "
+                     "intervals) per temperature bin");
   command.add_option("--temperature-bin", options.temperature_bin, "temperature bin width (channel's unit)")
       ->capture_default_str();
   command.add_option("--binary", options.binary, "raw binary samples: f32|f64|i16|i32[:le|be]");
