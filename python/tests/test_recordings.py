@@ -259,3 +259,23 @@ def test_temperature_fit_per_bin_and_bad_keywords():
         imunoise.dev(x, 100.0, gaps="interpolate")
     with pytest.raises(ValueError, match="skip"):
         imunoise.dev(x, 100.0, skip="soon")
+
+
+def test_mcap_written_by_the_reference_writer_reads_back_bit_for_bit(tmp_path):
+    """The reference TypeScript writer (@mcap/core, tests/io/mcap_writer; `npm ci` there, as
+    .ci/run does), zstd chunks with a summary, read back against the values it saved."""
+    writer = os.path.join(os.path.dirname(__file__), "..", "..", "tests", "io", "mcap_writer")
+    node = shutil.which("node")
+    if node is None or not os.path.isdir(os.path.join(writer, "node_modules")):
+        pytest.skip("node or tests/io/mcap_writer/node_modules missing (run npm ci there)")
+    path = str(tmp_path / "imu.mcap")
+    subprocess.run([node, os.path.join(writer, "write_mcap.js"), path, "zstd", "1500", "200", "summary"], check=True)
+    expected = np.fromfile(path + ".expected", dtype="<f8").reshape(-1, 7)
+    rec = imunoise.read(path, topic="/imu")
+    assert rec.format == "MCAP" and rec.stream == "/imu"
+    assert rec.message_type == "sensor_msgs/msg/Imu"
+    assert len(rec) == 1500
+    np.testing.assert_array_equal(rec.to_array(), expected[:, 1:])
+    np.testing.assert_allclose(rec.time_s, expected[:, 0] * 1e-9, rtol=0, atol=1e-12)
+    with pytest.raises(ValueError, match="/imu"):
+        imunoise.read(path, topic="/nope")
