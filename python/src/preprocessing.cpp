@@ -47,8 +47,8 @@ std::string skip_text(const py::object& skip) {
 }  // namespace
 
 bool PreprocessArgs::any() const {
-  return !time.is_none() || !skip.is_none() || detrend != "none" || !outliers.is_none() || davar ||
-         !temperature.is_none();
+  return !time.is_none() || !skip.is_none() || detrend != "none" || !outliers.is_none() || gaps != "fail" ||
+         davar || !temperature.is_none();
 }
 
 PreparedRecord prepare_record(std::span<const double> samples, const py::object& rate_arg, const std::string& units,

@@ -29,7 +29,7 @@ struct PreprocessArgs {
   double davar_window_s = 0.0;
   pybind11::object temperature;  ///< None or one temperature per sample
   double temperature_bin = 5.0;
-  /// True when any step, or timestamps, were given.
+  /// True when any step, timestamps, or a gap policy other than 'fail' were given.
   [[nodiscard]] bool any() const;
 };
 

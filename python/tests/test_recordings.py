@@ -188,6 +188,8 @@ def test_gap_refused_then_split_agrees_with_the_gap_free_record(gappy):
         imunoise.dev(cut, time=t, estimators="totdev", gaps="split")
     with pytest.raises(ValueError, match="needs the timestamps"):
         imunoise.dev(cut, 100.0, gaps="split")
+    with pytest.raises(ValueError, match="needs the timestamps"):
+        imunoise.fit(cut, 100.0, gaps="split")
 
 
 def test_fit_of_a_split_record_holds_the_true_n(gappy):
