@@ -12,6 +12,7 @@
 #include "imunoise/confidence/fill_confidence.hpp"
 #include "imunoise/deviation.hpp"
 #include "imunoise/error.hpp"
+#include "imunoise/preprocess/pipeline.hpp"
 #include "imunoise/preprocess/preprocess.hpp"
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
@@ -42,10 +43,6 @@ struct DevOptionsCli {
   bool mpi = false;
 };
 
-nlohmann::json json_number(double v) {
-  return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr);
-}
-
 // Where the record came from and what preprocessing did (issue 16), on each curve object.
 void add_provenance(const PhaseRecord& record, nlohmann::json& object) {
   if (!record.format.empty()) {
@@ -53,22 +50,13 @@ void add_provenance(const PhaseRecord& record, nlohmann::json& object) {
                            {"channel", record.channel}};
   }
   if (!record.preprocessing.empty()) object["preprocessing"] = record.preprocessing;
-  if (record.davar) {
-    const auto& d = *record.davar;
-    object["davar"] = {{"window_s", d.window_s}, {"step_s", d.step_s}, {"window_start_s", d.window_start_s},
-                       {"tau_s", d.tau_s}, {"avar_si", d.avar}, {"reference_avar_si", d.reference_avar},
-                       {"window_flagged", d.window_flagged}, {"stationary", d.stationary},
-                       {"change_times_s", d.change_times_s}, {"suggested_skip_s", d.suggested_skip_s}};
-  }
+  if (record.davar) object["davar"] = preprocess::davar_json(*record.davar);
   if (!record.temperature_bins.empty()) {
-    auto bins = nlohmann::json::array();
-    for (const auto& b : record.temperature_bins) {
-      bins.push_back({{"low", b.low}, {"high", b.high}, {"samples", b.samples}, {"runs", b.segments},
-                      {"mean_temperature", b.mean_temperature}, {"bias_si", b.bias_si},
-                      {"bias_stderr_si", b.bias_stderr_si}, {"N_si", json_number(b.random_walk_si)},
-                      {"N_tau_s", b.random_walk_tau_s}, {"B_si", json_number(b.bias_instability_si)}});
-    }
-    object["temperature_bins"] = std::move(bins);
+    // Per bin: bias, the N/B read-offs and the full noise-model fit (default fit options).
+    const fit::RecordInfo info{record.source, record.rate_hz, record.n_samples, record.rate_unit,
+                               unit_label(record),
+                               record.unit_given && record.rate_unit.quantity == Quantity::angular_rate};
+    object["temperature_bins"] = preprocess::temperature_bins_json(record.temperature_bins, info, fit::FitOptions{});
   }
 }
 
@@ -165,7 +153,7 @@ void run_dev(const DevOptionsCli& options) {
     text = study::curves_table(record, curves, options.ci_level);
   }
   write_output(options.output, text);
-  if (record.timing && !record.timing->gaps.empty()) {
+  if (record.timing && !record.timing->gaps.empty() && options.input.gaps != "split") {
     fmt::print(stderr, "imunoise: warning: {} gaps ({} missing samples) were treated as equally "
                        "spaced (--allow-gaps)\n", record.timing->gaps.size(),
                record.timing->missing_samples);

@@ -83,12 +83,11 @@ void run_fit(FitOptionsCli& options) {
     mpi_result = fit_curve(dist.record, dist.n_phase, dist.curves[0], warnings, fo).result;
     loaded = std::move(dist.record);
   } else {
-    loaded = load_phase(options.input);
-    if (loaded.segments.size() > 1) {
-      throw InputError(loaded.source + ": fit needs one contiguous record, but --gaps split / --outliers reject "
-                       "split it into " + std::to_string(loaded.segments.size()) + " segments; fix: fit the longest "
-                       "gap-free stretch, or use --allow-gaps / --outliers report");
-    }
+    // A split record (--gaps split, --outliers reject) is fitted to its pooled oadev (fit_stage.hpp).
+    // --temperature: each bin is fitted with this command's fit options.
+    InputOptions input = options.input;
+    input.temperature_fit = fo;
+    loaded = load_phase(input);
   }
   // to_study_record moves the samples, the source and the timing; the provenance stays here.
   const study::Record record = to_study_record(std::move(loaded));
@@ -104,6 +103,9 @@ void run_fit(FitOptionsCli& options) {
                       {"channel", loaded.channel}};
   }
   if (!loaded.preprocessing.empty()) json["preprocessing"] = loaded.preprocessing;
+  if (!loaded.temperature_bins.empty()) {
+    json["temperature_bins"] = preprocess::temperature_bins_json(loaded.temperature_bins, study::record_info(record), fo);
+  }
   std::string preprocessing_lines;
   for (const auto& line : loaded.preprocessing) preprocessing_lines += "# preprocessing: " + line + "\n";
   std::string text;

@@ -18,6 +18,7 @@
 #include "imunoise/io/recording.hpp"
 #include "imunoise/io/text_reader.hpp"
 #include "imunoise/phase.hpp"
+#include "imunoise/preprocess/pipeline.hpp"
 
 namespace imunoise::cli {
 namespace {
@@ -162,32 +163,27 @@ io::TimingReport checked_timing(std::span<const double> time_s, const std::strin
   return io::check_timing(time_s, source, lines, allow_gaps);
 }
 
-// "30", "30s", "5min", "1.5h" -> seconds.
-double parse_duration_s(const std::string& text) {
-  std::size_t used = 0;
-  double value = 0.0;
-  try {
-    value = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  const std::string unit = used ? text.substr(used) : "";
-  const double factor = unit.empty() || unit == "s" ? 1.0 : unit == "min" ? 60.0 : unit == "h" ? 3600.0 : 0.0;
-  if (used == 0 || factor == 0.0 || !std::isfinite(value) || value < 0.0) {
-    throw InputError("--skip " + text + " is not a duration; fix: pass seconds (30, 30s), minutes (5min), "
-                     "hours (0.5h) or auto");
-  }
-  return value * factor;
+preprocess::PipelineOptions pipeline_options(const InputOptions& options) {
+  preprocess::PipelineOptions p;
+  p.skip = options.skip;
+  p.detrend = options.detrend;
+  p.outliers = options.outliers;
+  p.split_gaps = options.gaps == "split";
+  p.davar = options.davar;
+  p.davar_window_s = options.davar_window_s;
+  p.temperature = options.temperature;
+  p.temperature_bin = options.temperature_bin;
+  p.temperature_fit = options.temperature_fit;
+  return p;
 }
 
 bool wants_preprocessing(const InputOptions& options) {
-  return !options.skip.empty() || options.detrend != "none" || !options.outliers.empty() ||
-         options.gaps == "split" || options.davar || !options.temperature.empty();
+  return preprocess::wants_preprocessing(pipeline_options(options));
 }
 
-// The preprocessing steps on rate samples in SI, in order: warm-up skip, detrend, spikes, and
-// the split into segments at gaps and rejected spikes. `gap_breaks`: first sample after each
-// timestamp gap (for --gaps split). Each step says what it removed in record.preprocessing.
+// The preprocessing steps on rate samples in SI (preprocess/pipeline.hpp). `gap_breaks`: first
+// sample after each timestamp gap (for --gaps split). Each step says what it removed in
+// record.preprocessing.
 std::vector<double> preprocess_rates(const InputOptions& options, PhaseRecord& record, std::vector<double> values,
                                      std::vector<std::size_t> gap_breaks, std::vector<double> temperature = {}) {
   if (!wants_preprocessing(options)) return values;
@@ -196,116 +192,13 @@ std::vector<double> preprocess_rates(const InputOptions& options, PhaseRecord& r
                      "rate samples; fix: drop them, or pass rate input");
   }
   const std::string unit = record.unit_given ? std::string(si_unit_name(record.rate_unit.quantity)) : "input unit";
-  const double rate = record.rate_hz;
-  std::size_t skip = 0;
-  if (options.skip == "auto") {
-    preprocess::DavarOptions d;
-    d.window_s = std::max(static_cast<double>(values.size()) / rate / 20.0, 100.0 / rate);
-    const auto result = preprocess::dynamic_allan(values, rate, d);
-    skip = static_cast<std::size_t>(std::llround(result.suggested_skip_s * rate));
-    record.preprocessing.push_back(fmt::format(
-        "skip auto: the dynamic Allan variance (window {:.6g} s) {}; skipped the first {:.6g} s ({} samples)",
-        result.window_s, result.suggested_skip_s > 0 ? "flags a warm-up" : "flags no warm-up",
-        result.suggested_skip_s, skip));
-  } else if (!options.skip.empty()) {
-    const double skip_s = parse_duration_s(options.skip);
-    skip = static_cast<std::size_t>(std::llround(skip_s * rate));
-    record.preprocessing.push_back(fmt::format("skip: removed the first {:.6g} s ({} samples)", skip_s, skip));
-  }
-  if (skip >= values.size()) {
-    throw InputError(record.source + ": --skip removes all " + std::to_string(values.size()) +
-                     " samples; fix: skip less than the record");
-  }
-  values.erase(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(skip));
-  if (!options.temperature.empty()) {
-    // Binned on the rates as recorded (after the skip, before detrending: the bias per bin is
-    // what a temperature calibration needs).
-    if (temperature.size() != values.size() + skip) {
-      throw InputError(record.source + ": --temperature " + options.temperature + " has " +
-                       std::to_string(temperature.size()) + " samples, the rate " + std::to_string(values.size() + skip) +
-                       "; fix: choose a temperature column of the same record");
-    }
-    temperature.erase(temperature.begin(), temperature.begin() + static_cast<std::ptrdiff_t>(skip));
-    record.temperature_bins = preprocess::temperature_bins(values, temperature, rate, options.temperature_bin);
-    for (const auto& b : record.temperature_bins) {
-      record.preprocessing.push_back(fmt::format(
-          "temperature [{:g}, {:g}): {} samples in {} runs, mean {:.4g}; bias {:.6g} +- {:.2g} {}; "
-          "N {:.6g} {}*sqrt(s) (tau {:g} s); B {:.6g} {}", b.low, b.high, b.samples, b.segments,
-          b.mean_temperature, b.bias_si, b.bias_stderr_si, unit, b.random_walk_si, unit, b.random_walk_tau_s,
-          b.bias_instability_si, unit));
-    }
-    if (record.temperature_bins.empty()) {
-      record.preprocessing.push_back("temperature: no bin holds 1000 samples; fix: widen --temperature-bin");
-    }
-  }
-  std::vector<std::size_t> breaks;
-  for (const auto b : gap_breaks) if (b > skip) breaks.push_back(b - skip);
-
-  const auto order = preprocess::parse_detrend(options.detrend);
-  if (order != preprocess::DetrendOrder::none) {
-    const auto r = preprocess::detrend(values, rate, order);
-    std::string coefficients;
-    const char* powers[] = {"", "/s", "/s^2"};
-    for (std::size_t k = 0; k < r.coefficients.size(); ++k) {
-      coefficients += fmt::format("{}c{} = {:.6g} {}{}", k ? ", " : "", k, r.coefficients[k], unit, powers[k]);
-    }
-    record.preprocessing.push_back(fmt::format(
-        "detrend {}: removed {} (RMS {:.6g} {} about the mean); this also removes rate ramp R and "
-        "biases rate random walk K low", options.detrend, coefficients, r.removed_rms, unit));
-  }
-
-  std::vector<std::size_t> removed;
-  if (!options.outliers.empty()) {
-    if (options.outliers != "fail" && options.outliers != "report" && options.outliers != "reject") {
-      throw InputError("--outliers " + options.outliers + " is not known; fix: pass fail, report or reject");
-    }
-    const auto r = preprocess::find_spikes(values, 0.0, record.source);
-    std::string first;
-    for (std::size_t k = 0; k < std::min<std::size_t>(r.indices.size(), 5); ++k) {
-      first += fmt::format("{}{} ({:.6g} {})", k ? ", " : "", r.indices[k] + skip,
-                           values[r.indices[k]], unit);
-    }
-    const std::string summary = fmt::format(
-        "{} spikes beyond {:.3g} robust sigma (median {:.6g} {}, 1.4826 MAD = {:.6g} {}){}{}",
-        r.indices.size(), r.threshold_sigmas, r.median, unit, r.robust_sigma, unit,
-        r.indices.empty() ? "" : " at samples ", first + (r.indices.size() > 5 ? ", ..." : ""));
-    if (options.outliers == "fail" && !r.indices.empty()) {
-      throw InputError(record.source + ": " + summary + "; fix: remove them, or pass --outliers reject "
-                       "(split at them) or --outliers report");
-    }
-    if (options.outliers == "reject") {
-      removed = r.indices;
-      record.preprocessing.push_back("outliers reject: " + summary + "; removed, the record split at each");
-    } else {
-      record.preprocessing.push_back("outliers " + options.outliers + ": " + summary);
-    }
-  }
-  if (!breaks.empty() || !removed.empty()) {
-    record.segments = preprocess::split_segments(values.size(), breaks, removed);
-    std::size_t kept = 0;
-    for (const auto& seg : record.segments) kept += seg.size();
-    if (!breaks.empty()) {
-      record.preprocessing.push_back(fmt::format(
-          "gaps split: {} gaps; analysed as {} segments ({} samples) whose Allan sums are pooled, no term "
-          "spanning a gap (nothing interpolated)", breaks.size(), record.segments.size(), kept));
-    }
-  }
-  if (options.davar) {
-    preprocess::DavarOptions d;
-    d.window_s = options.davar_window_s > 0 ? options.davar_window_s
-                                            : std::max(static_cast<double>(values.size()) / rate / 20.0, 100.0 / rate);
-    record.davar = preprocess::dynamic_allan(values, rate, d);
-    const auto& r = *record.davar;
-    std::string changes;
-    for (const double t : r.change_times_s) changes += fmt::format("{}{:.6g}", changes.empty() ? "" : ", ", t);
-    record.preprocessing.push_back(fmt::format(
-        "davar: {} windows of {:.6g} s every {:.6g} s at {} taus: {}{}{}",
-        r.avar.size(), r.window_s, r.step_s, r.tau_s.size(),
-        r.stationary ? "stationary (no window outside its chi-squared band)" : "NOT stationary",
-        changes.empty() ? "" : "; changes near t = " + changes + " s",
-        r.suggested_skip_s > 0 ? fmt::format("; suggested --skip {:.6g}", r.suggested_skip_s) : ""));
-  }
-  return values;
+  auto result = preprocess::run_pipeline(pipeline_options(options), std::move(values),
+                                         record.rate_hz, gap_breaks, std::move(temperature), record.source, unit);
+  record.preprocessing.insert(record.preprocessing.end(), result.notes.begin(), result.notes.end());
+  record.segments = std::move(result.segments);
+  record.davar = std::move(result.davar);
+  record.temperature_bins = std::move(result.temperature_bins);
+  return std::move(result.values);
 }
 
 // Integrates preprocessed rate values; a split record keeps its rates and segments for the
@@ -550,13 +443,14 @@ void add_input_options(CLI::App& command, InputOptions& options) {
   command.add_option("--outliers", options.outliers,
                      "spikes by robust MAD: fail, report, or reject (removed; the record split at each)");
   command.add_option("--gaps", options.gaps,
-                     "timestamp gaps: fail (default), or split (segments whose Allan sums are pooled; "
-                     "never interpolated)");
+                     "timestamp gaps: fail (default), or split (segments whose sums are pooled for "
+                     "adev oadev mdev tdev hdev ohdev and the fit; never interpolated)");
   command.add_flag("--davar", options.davar,
                    "dynamic Allan variance (sliding window) and a stationarity verdict");
   command.add_option("--davar-window", options.davar_window_s, "DAVAR window (s); default record / 20");
   command.add_option("--temperature", options.temperature,
-                     "temperature column/channel: bias, N and B reported per temperature bin");
+                     "temperature column/channel: bias and the noise-model fit (Q N B K with "
+                     "intervals) per temperature bin");
   command.add_option("--temperature-bin", options.temperature_bin, "temperature bin width (channel's unit)")
       ->capture_default_str();
   command.add_option("--binary", options.binary, "raw binary samples: f32|f64|i16|i32[:le|be]");

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "imunoise/fit/fit.hpp"
 #include "imunoise/io/binary_reader.hpp"
 #include "imunoise/io/recording.hpp"
 #include "imunoise/io/timestamps.hpp"
@@ -42,6 +43,8 @@ struct InputOptions {
   double davar_window_s = 0.0;   ///< --davar-window (0: record / 20)
   std::string temperature;       ///< --temperature COLUMN|CHANNEL: bin the analysis by temperature
   double temperature_bin = 5.0;  ///< --temperature-bin WIDTH (the temperature channel's unit)
+  /// Options of the per-bin noise-model fits (set by `fit` to its own; default otherwise).
+  std::optional<fit::FitOptions> temperature_fit;
 };
 
 void add_input_options(CLI::App& command, InputOptions& options);

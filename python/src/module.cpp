@@ -11,6 +11,7 @@ void register_nav(py::module_& m);
 void register_allantools(py::module_& m);
 void register_redundant(py::module_& m);
 void register_study(py::module_& m);
+void register_recording(py::module_& m);  // imunoise.read, imunoise.dev (issue 16)
 }
 
 PYBIND11_MODULE(_imunoise, m) {
@@ -22,4 +23,5 @@ PYBIND11_MODULE(_imunoise, m) {
   imunoise::python::register_allantools(m);
   imunoise::python::register_redundant(m);
   imunoise::python::register_study(m);
+  imunoise::python::register_recording(m);
 }

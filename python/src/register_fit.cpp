@@ -22,6 +22,9 @@
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
 #include "imunoise/units.hpp"
+#include "imunoise/io/timestamps.hpp"
+#include "imunoise/study/fit_stage.hpp"
+#include "preprocessing.hpp"
 
 namespace py = pybind11;
 
@@ -53,7 +56,7 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
                      const std::string& units, const std::string& method,
                      const std::string& terms, double level, const std::string& taus,
                      const std::string& selection, bool gls, int min_dominant_taus,
-                     const std::string& spec_name) {
+                     const std::string& spec_name, const PreprocessArgs& preprocessing) {
   if (data.ndim() != 1) throw InputError("data must be a 1-D array, got " + std::to_string(data.ndim()) + "-D");
   if (!(rate > 0) || !std::isfinite(rate)) {
     throw InputError("rate must be positive and finite (Hz), got " + std::to_string(rate));
@@ -79,6 +82,25 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
       spec_name.empty() ? std::nullopt : std::optional<Spec>(resolve_spec(spec_name));
 
   fit::FitResult result;
+  if (preprocessing.any()) {
+    // Timestamps or preprocessing (issue 16): the record built as the command line builds it,
+    // fitted by the study's fit stage (a split record is fitted to its pooled curve).
+    if (kind != InputKind::rate) {
+      throw InputError("skip, detrend, outliers, gaps, davar, temperature and time work on rate samples; "
+                       "fix: pass data_type='rate'");
+    }
+    nlohmann::json report;
+    PreparedRecord prepared = prepare_record(samples, py::float_(rate), units, preprocessing, options);
+    {
+      py::gil_scoped_release release;
+      result = study::fit_channel(prepared.record, options, grid);
+      report = fit::report_json(study::record_info(prepared.record), options, result);
+      add_provenance(prepared, options, report);
+    }
+    report["spec_comparison"] =
+        spec ? comparison_json(compare(result.coefficients, *spec)) : nlohmann::json(nullptr);
+    return py::module_::import("json").attr("loads")(report.dump());
+  }
   {
     py::gil_scoped_release release;
     if (const std::size_t i = first_non_finite(samples); i < samples.size()) {
@@ -121,14 +143,36 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
 }  // namespace
 
 void register_fit(py::module_& m) {
-  m.def("fit", &fit_array, py::arg("data"), py::arg("rate"), py::arg("data_type") = "rate",
+  m.def("fit", [](const Array& data, const py::object& rate, const std::string& data_type, const std::string& units,
+                  const std::string& method, const std::string& terms, double level, const std::string& taus,
+                  const std::string& selection, bool gls, int min_dominant_taus, const std::string& spec_name,
+                  const py::object& time, const py::object& skip, const std::string& detrend,
+                  const py::object& outliers, const std::string& gaps, bool davar, double davar_window,
+                  const py::object& temperature, double temperature_bin) {
+          // Preprocessing keywords (preprocessing.hpp); rate may come from time= instead.
+          const PreprocessArgs pre{time, skip, detrend, outliers, gaps, davar, davar_window, temperature, temperature_bin};
+          double rate_hz = rate.is_none() ? 0.0 : rate.cast<double>();
+          if (rate.is_none() && !time.is_none()) {
+            const Array t = Array::ensure(time);
+            if (!t || t.ndim() != 1) throw InputError("time must be a 1-D array of timestamps (s)");
+            rate_hz = io::analyze_timing({t.data(), static_cast<std::size_t>(t.shape(0))}, "array").rate_hz;
+          }
+          return fit_array(data, rate_hz, data_type, units, method, terms, level, taus, selection, gls,
+                           min_dominant_taus, spec_name, pre);
+        },
+        py::arg("data"), py::arg("rate") = py::none(), py::arg("data_type") = "rate",
         py::arg("units") = "", py::arg("method") = "wls", py::arg("terms") = "Q,N,B,K",
         py::arg("level") = 0.95, py::arg("taus") = "octave", py::arg("selection") = "none",
         py::arg("gls") = false, py::arg("min_dominant_taus") = 2, py::arg("spec") = "",
+        py::arg("time") = py::none(), py::arg("skip") = py::none(), py::arg("detrend") = "none",
+        py::arg("outliers") = py::none(), py::arg("gaps") = "fail", py::arg("davar") = false,
+        py::arg("davar_window") = 0.0, py::arg("temperature") = py::none(), py::arg("temperature_bin") = 5.0,
         "Noise-model coefficients (Q, N, B, K, R; terms may add GM and SIN, the optional "
         "Gauss-Markov and sinusoid terms) of a record with 95% intervals and verdicts; "
         "returns the dict of `imunoise fit --format json` (data_type 'rate' by default; "
-        "spec='tg100' or a YAML spec file adds the datasheet comparison).");
+        "spec='tg100' or a YAML spec file adds the datasheet comparison). Preprocessing keywords "
+        "as imunoise.dev: time=, skip=, detrend=, outliers=, gaps=, davar=, davar_window=, "
+        "temperature=, temperature_bin= (a fit per temperature bin under \"temperature_bins\").");
 }
 
 }  // namespace imunoise::python

@@ -9,6 +9,7 @@
 #include "imunoise/confidence/interval.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/phase.hpp"
+#include "imunoise/preprocess/pooled_deviation.hpp"
 
 namespace imunoise::preprocess {
 
@@ -151,49 +152,9 @@ std::vector<Segment> split_segments(std::size_t n, std::span<const std::size_t> 
 
 std::vector<DevPoint> pooled_oadev(std::span<const double> rate_si, std::span<const Segment> segments,
                                    double tau0_s, std::span<const std::size_t> factors, double level) {
-  std::vector<long double> sum(factors.size(), 0.0L);
-  std::vector<std::size_t> count(factors.size(), 0);
-  std::vector<double> edf(factors.size(), 0.0);
-  for (const Segment& s : segments) {
-    if (s.size() < 2) continue;
-    const auto rate = rate_si.subspan(s.begin, s.size());
-    const std::vector<double> phase = phase_from_rate(rate, tau0_s, compensated_mean(rate));
-    std::vector<std::size_t> local;
-    std::vector<std::size_t> where;
-    for (std::size_t j = 0; j < factors.size(); ++j) {
-      if (factors[j] >= 1 && 2 * factors[j] + 1 <= phase.size()) {
-        local.push_back(factors[j]);
-        where.push_back(j);
-      }
-    }
-    if (local.empty()) continue;
-    const auto points = oadev(phase, tau0_s, local);
-    for (std::size_t k = 0; k < points.size(); ++k) {
-      const std::size_t j = where[k];
-      const double tau = points[k].tau_s;
-      // Back to the segment's sum of squared second differences: S = 2 tau^2 n avar.
-      sum[j] += 2.0L * tau * tau * static_cast<long double>(points[k].n) * points[k].dev * points[k].dev;
-      count[j] += points[k].n;
-      edf[j] += std::max(0.0, static_cast<double>(phase.size()) / static_cast<double>(factors[j]) - 1.0);
-    }
-  }
-  std::vector<DevPoint> out;
-  for (std::size_t j = 0; j < factors.size(); ++j) {
-    if (count[j] == 0) continue;
-    DevPoint p;
-    p.m = factors[j];
-    p.tau_s = static_cast<double>(factors[j]) * tau0_s;
-    p.n = count[j];
-    p.dev = static_cast<double>(std::sqrt(sum[j] / (2.0L * p.tau_s * p.tau_s * static_cast<long double>(count[j]))));
-    p.edf = edf[j];
-    if (p.edf > 0.0) {
-      const auto ci = chi2_interval(p.dev, p.edf, level);
-      p.ci_low = ci.low;
-      p.ci_high = ci.high;
-    }
-    out.push_back(p);
-  }
-  return out;
+  PoolOptions options;
+  options.level = level;
+  return pooled_deviation(Estimator::oadev, rate_si, segments, tau0_s, factors, options).points;
 }
 
 }  // namespace imunoise::preprocess

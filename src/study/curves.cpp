@@ -8,6 +8,7 @@
 #include <fmt/core.h>
 
 #include "imunoise/error.hpp"
+#include "imunoise/preprocess/pooled_deviation.hpp"
 #include "imunoise/study/work_budget.hpp"
 #include "imunoise/total.hpp"
 
@@ -38,6 +39,14 @@ std::vector<Curve> compute_curves(const Record& record, const CurveOptions& opti
   const double tau0_s = 1.0 / record.rate_hz;
   std::vector<Curve> curves;
   for (const Estimator estimator : options.estimators) {
+    if (const auto why = record.segments.size() > 1 ? preprocess::pooling_refusal(estimator)
+                                                    : std::string_view();
+        !why.empty()) {
+      throw InputError(record.source + ": the record is split into " + std::to_string(record.segments.size()) +
+                       " segments and " + std::string(estimator_name(estimator)) + " cannot be pooled over them: " +
+                       std::string(why) + "; fix: --estimator adev, oadev, mdev, tdev, hdev or ohdev, or drop "
+                       "--gaps split / --outliers reject");
+    }
     const std::size_t max_m = max_averaging_factor(estimator, record.phase_si.size());
     if (max_m == 0) {
       throw InputError(record.source + ": " + std::to_string(record.n_samples) +
@@ -69,6 +78,7 @@ std::vector<Curve> compute_curves(const Record& record, const CurveOptions& opti
       if (warn) warn(skip_note);
     }
     std::vector<DevPoint> points;
+    std::vector<PointConfidence> pooled_confidence;
     std::optional<TheoBiasFactor> theobr_factor;
     if (estimator == Estimator::theobr && !factors.empty()) {
       TheoBiasFactor kf;
@@ -80,23 +90,23 @@ std::vector<Curve> compute_curves(const Record& record, const CurveOptions& opti
           kf.avar_over_theo1, kf.ratios, options.theobr_ratios_name,
           skip_note.empty() ? "" : "; ", skip_note);
     } else if (!factors.empty() && record.segments.size() > 1) {
-      // A split record (--gaps split, --outliers reject): the segments' Allan sums are pooled,
-      // with chi-squared bounds from the summed edf (preprocess.hpp).
-      if (estimator != Estimator::oadev) {
-        throw InputError(record.source + ": the record is split into " + std::to_string(record.segments.size()) +
-                         " segments, whose sums are pooled for oadev only; fix: --estimator oadev, or "
-                         "drop --gaps split / --outliers reject");
-      }
-      points = preprocess::pooled_oadev(record.rate_si, record.segments, tau0_s, factors, options.ci_level);
-      if (options.no_ci) {
-        for (auto& p : points) p.ci_low = p.ci_high = p.edf = std::numeric_limits<double>::quiet_NaN();
-      }
+      // A split record (--gaps split, --outliers reject): the segments' sums are pooled, with
+      // chi-squared bounds from the Satterthwaite-combined EDF (preprocess/pooled_deviation.hpp).
+      preprocess::PoolOptions pool;
+      pool.level = options.ci_level;
+      pool.forced_alpha = options.forced_alpha;
+      pool.no_ci = options.no_ci;
+      pool.threads = options.threads;
+      auto pooled = preprocess::pooled_deviation(estimator, record.rate_si, record.segments, tau0_s, factors, pool);
+      points = std::move(pooled.points);
+      pooled_confidence = std::move(pooled.confidence);
       skip_note = "pooled over " + std::to_string(record.segments.size()) +
-                  " segments; bounds from the summed simple edf (n/m - 1 per segment)";
+                  " segments (no term spans a break); EDF per segment (Greenhall-Riley for the noise type "
+                  "of the longest segment) combined by Satterthwaite";
     } else if (!factors.empty()) {
       points = compute_deviation(estimator, record.phase_si, tau0_s, factors, {options.threads});
     }
-    std::vector<PointConfidence> confidence;
+    std::vector<PointConfidence> confidence = std::move(pooled_confidence);
     if (!options.no_ci && record.segments.size() <= 1) {
       ConfidenceOptions confidence_options;
       confidence_options.level = options.ci_level;

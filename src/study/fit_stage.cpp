@@ -7,6 +7,7 @@
 
 #include "imunoise/allan.hpp"
 #include "imunoise/error.hpp"
+#include "imunoise/preprocess/pooled_deviation.hpp"
 #include "imunoise/theo.hpp"
 
 namespace imunoise::study {
@@ -31,8 +32,24 @@ fit::FitResult fit_channel(const Record& record, const fit::FitOptions& options,
   }
   const auto factors = estimator_averaging_factors(Estimator::oadev, grid, record.rate_hz,
                                                    record.phase_si.size());
-  const auto points = oadev(record.phase_si, tau0_s, factors);
-  fit::FitResult result = fit::fit_allan(points, record.phase_si.size(), tau0_s, options);
+  std::vector<DevPoint> points;
+  std::size_t n_phase = record.phase_si.size();
+  if (record.segments.size() > 1) {
+    // A split record: the pooled oadev (no term spans a break; preprocess/pooled_deviation.hpp)
+    // with the covariance of one record of the segments' summed length (sum of their angle
+    // samples), which counts 2 m (K - 1) terms more than the K segments hold at factor m.
+    preprocess::PoolOptions pool;
+    pool.level = options.level;
+    auto pooled = preprocess::pooled_deviation(Estimator::oadev, record.rate_si, record.segments, tau0_s, factors, pool);
+    points = std::move(pooled.points);
+    n_phase = 0;
+    for (const auto& s : record.segments) n_phase += s.size() + 1;
+    warnings.push_back("split record: fitted to the oadev pooled over " + std::to_string(record.segments.size()) +
+                       " segments, with the estimate covariance of one record of their summed length");
+  } else {
+    points = oadev(record.phase_si, tau0_s, factors);
+  }
+  fit::FitResult result = fit::fit_allan(points, n_phase, tau0_s, options);
   result.summary.warnings.insert(result.summary.warnings.begin(), warnings.begin(), warnings.end());
   if (result.summary.termination == fit::Termination::degenerate_input ||
       result.summary.termination == fit::Termination::too_few_points) {

@@ -111,9 +111,19 @@ TEST_F(PreprocessCli, GapRefusedByDefaultAndPooledWithGapsSplit) {
   const auto& p0 = j.at("points")[0];
   EXPECT_LE(p0.at("ci_low").get<double>(), 0.01);
   EXPECT_GE(p0.at("ci_high").get<double>(), 0.01);
-  const CliRun other = dev({file.string(), "--time-column", "t", "--column", "gx", "--gaps", "split", "--estimator", "mdev"});
+  // The whole Allan family pools (mdev here); the total family cannot and says why.
+  const CliRun mdev = dev({file.string(), "--time-column", "t", "--column", "gx", "--gaps", "split", "--estimator",
+                           "mdev,hdev", "--format", "json"});
+  ASSERT_EQ(mdev.code, 0) << mdev.err;
+  const auto curves = nlohmann::json::parse(mdev.out);
+  ASSERT_EQ(curves.size(), 2u);
+  EXPECT_EQ(curves[0].at("estimator"), "mdev");
+  EXPECT_NE(curves[1].at("note").get<std::string>().find("pooled over 2 segments"), std::string::npos);
+  const CliRun other = dev({file.string(), "--time-column", "t", "--column", "gx", "--gaps", "split", "--estimator", "totdev"});
   EXPECT_EQ(other.code, 1);
-  EXPECT_NE(other.err.find("oadev only"), std::string::npos) << other.err;
+  EXPECT_NE(other.err.find("totdev cannot be pooled over them: the total family extends the record by reflection"),
+            std::string::npos) << other.err;
+  EXPECT_NE(other.err.find("fix: --estimator adev, oadev, mdev"), std::string::npos) << other.err;
 }
 
 TEST_F(PreprocessCli, SpikesFailReportReject) {

@@ -65,12 +65,9 @@ struct Segment {
 std::vector<Segment> split_segments(std::size_t n, std::span<const std::size_t> breaks,
                                     std::span<const std::size_t> removed = {});
 
-/// Overlapping Allan deviation of rate samples split into independent segments: each segment
-/// is integrated separately and its squared second differences are summed; the pooled
-/// variance is (sum over segments of S_m) / (sum of term counts), the same estimator as one
-/// record with no term spanning a gap. edf = sum of the segments' simple edf (n_phase/m - 1),
-/// and the points carry the chi-squared interval at `level` from it. A factor is kept when at
-/// least one segment has a term at it.
+/// Overlapping Allan deviation of rate samples split into independent segments:
+/// pooled_deviation(Estimator::oadev, ...) (pooled_deviation.hpp) at confidence `level`, the
+/// points only.
 std::vector<DevPoint> pooled_oadev(std::span<const double> rate_si, std::span<const Segment> segments,
                                    double tau0_s, std::span<const std::size_t> factors, double level = 0.683);
 

@@ -1,0 +1,156 @@
+// The preprocessing keyword arguments of imunoise.dev / imunoise.fit: parsed here, run by the
+// library's pipeline (imunoise/preprocess/pipeline.hpp), the record built as the command line
+// builds it (apps/imunoise/input_options.cpp: SI, offset from the first 2^20 samples, integrated).
+#include "preprocessing.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "imunoise/error.hpp"
+#include "imunoise/finite.hpp"
+#include "imunoise/io/timestamps.hpp"
+#include "imunoise/phase.hpp"
+#include "imunoise/study/fit_stage.hpp"
+#include "imunoise/units.hpp"
+
+namespace py = pybind11;
+
+namespace imunoise::python {
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+constexpr std::size_t kOffsetSamples = std::size_t{1} << 20;
+
+std::vector<double> vector_of(const py::object& value, const char* what, std::size_t expected) {
+  const Array a = Array::ensure(value);
+  if (!a || a.ndim() != 1) throw InputError(std::string(what) + " must be a 1-D array of numbers");
+  std::vector<double> out(a.data(), a.data() + a.shape(0));
+  if (out.size() != expected) {
+    throw InputError(std::string(what) + " has " + std::to_string(out.size()) + " values but the data " +
+                     std::to_string(expected) + "; fix: give one per sample");
+  }
+  return out;
+}
+
+std::string skip_text(const py::object& skip) {
+  if (skip.is_none()) return "";
+  if (py::isinstance<py::str>(skip)) return skip.cast<std::string>();
+  const double seconds = skip.cast<double>();
+  std::ostringstream text;
+  text.precision(17);
+  text << seconds;
+  return text.str();
+}
+
+}  // namespace
+
+bool PreprocessArgs::any() const {
+  return !time.is_none() || !skip.is_none() || detrend != "none" || !outliers.is_none() || gaps != "fail" ||
+         davar || !temperature.is_none();
+}
+
+PreparedRecord prepare_record(std::span<const double> samples, const py::object& rate_arg, const std::string& units,
+                              const PreprocessArgs& args, const std::optional<fit::FitOptions>& temperature_fit) {
+  if (args.gaps != "fail" && args.gaps != "split" && args.gaps != "allow") {
+    throw InputError("gaps='" + args.gaps + "' is not known; fix: pass 'fail', 'split' or 'allow'");
+  }
+  PreparedRecord out;
+  study::Record& r = out.record;
+  r.name = "array";
+  r.source = "array";
+  r.kind = InputKind::rate;
+  std::vector<double> values(samples.begin(), samples.end());
+  if (values.empty()) throw InputError("array: no samples");
+  if (const std::size_t i = first_non_finite(values); i < values.size()) {
+    throw InputError("array: sample " + std::to_string(i) + " is not finite (NaN or inf); remove or repair it");
+  }
+  double rate = rate_arg.is_none() ? 0.0 : rate_arg.cast<double>();
+  std::vector<std::size_t> breaks;
+  if (!args.time.is_none()) {
+    const auto time_s = vector_of(args.time, "time", values.size());
+    r.timing = io::check_timing(time_s, "array", nullptr, args.gaps != "fail");
+    if (rate > 0.0 && std::abs(r.timing->rate_hz / rate - 1.0) > 0.01) {
+      throw InputError("array: rate " + std::to_string(rate) + " Hz disagrees with the timestamps (" +
+                       std::to_string(r.timing->rate_hz) + " Hz from the median interval); fix: drop rate");
+    }
+    if (!(rate > 0.0)) rate = r.timing->rate_hz;
+    if (args.gaps == "split") {
+      for (const auto& g : r.timing->gaps) breaks.push_back(g.index);
+    }
+  } else if (args.gaps == "split") {
+    throw InputError("gaps='split' needs the timestamps: pass time=recording.time_s (seconds, one per sample)");
+  }
+  if (!(rate > 0.0) || !std::isfinite(rate)) {
+    throw InputError("rate must be positive and finite (Hz), or given by time=; got " + std::to_string(rate));
+  }
+  r.rate_hz = rate;
+  r.unit_given = !units.empty();
+  if (r.unit_given) {
+    r.rate_unit = parse_unit(units);
+    if (r.rate_unit.quantity == Quantity::angle || r.rate_unit.quantity == Quantity::time) {
+      throw InputError("units='" + units + "' is an angle or time unit but the samples are rates; "
+                       "give a rate unit such as 'deg/s', 'rad/s' or 'm/s^2'");
+    }
+  } else {
+    r.rate_unit = Unit{"input unit", Quantity::dimensionless, 1.0};
+  }
+  if (const double to_si = r.rate_unit.to_si; to_si != 1.0) {
+    for (double& v : values) v *= to_si;
+  }
+  preprocess::PipelineOptions options;
+  options.skip = skip_text(args.skip);
+  options.detrend = args.detrend;
+  options.outliers = args.outliers.is_none() ? std::string() : args.outliers.cast<std::string>();
+  options.split_gaps = args.gaps == "split";
+  options.davar = args.davar;
+  options.davar_window_s = args.davar_window_s;
+  options.temperature_bin = args.temperature_bin;
+  options.temperature_fit = temperature_fit;
+  std::vector<double> temperature;
+  if (!args.temperature.is_none()) {
+    options.temperature = "temperature";
+    temperature = vector_of(args.temperature, "temperature", values.size());
+  }
+  const std::string unit = r.unit_given ? std::string(si_unit_name(r.rate_unit.quantity)) : "input unit";
+  py::gil_scoped_release release;  // the arguments are read: the rest is the library's work
+  out.steps = preprocess::run_pipeline(options, std::move(values), rate, breaks, std::move(temperature), r.source, unit);
+  values = std::move(out.steps.values);
+  out.steps.values.clear();
+  // As the command line's finish_rates: a split record keeps its rates and segments for the
+  // pooled estimators; one segment is simply the record.
+  if (out.steps.segments.size() > 1) {
+    r.segments = out.steps.segments;
+    r.n_samples = 0;
+    for (const auto& s : r.segments) r.n_samples += s.size();
+    r.rate_si = values;
+  } else {
+    if (out.steps.segments.size() == 1) {
+      const auto s = out.steps.segments.front();
+      values = std::vector<double>(values.begin() + static_cast<std::ptrdiff_t>(s.begin),
+                                   values.begin() + static_cast<std::ptrdiff_t>(s.end));
+    }
+    r.n_samples = values.size();
+  }
+  const std::span<const double> v(values);
+  const double offset = compensated_mean(v.first(std::min(v.size(), kOffsetSamples)));
+  r.phase_si = phase_from_rate(v, 1.0 / rate, offset);
+  if (const std::size_t k = first_non_finite(r.phase_si); k < r.phase_si.size()) {
+    throw InputError("array: the integral of the samples overflows at sample " + std::to_string(k) + "; check units");
+  }
+  for (const auto& line : out.steps.notes) r.table_notes.push_back("preprocessing: " + line);
+  return out;
+}
+
+void add_provenance(const PreparedRecord& prepared, const fit::FitOptions& fit_options, nlohmann::json& document) {
+  const auto& steps = prepared.steps;
+  if (!steps.notes.empty()) document["preprocessing"] = steps.notes;
+  if (steps.davar) document["davar"] = preprocess::davar_json(*steps.davar);
+  if (!steps.temperature_bins.empty()) {
+    document["temperature_bins"] =
+        preprocess::temperature_bins_json(steps.temperature_bins, study::record_info(prepared.record), fit_options);
+  }
+}
+
+}  // namespace imunoise::python
