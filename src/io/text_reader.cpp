@@ -321,7 +321,11 @@ inline const char* skip_digits(const char* p, const char* end) {
 // mantissa required) starting at p, or nullptr. Every text of this form is a number for
 // parse_number (fast_float), so a cell that passes here is one the line parser accepts.
 inline const char* skip_number(const char* p, const char* end) {
-  if (*p == '-' || (*p == '+' && (is_digit(p[1]) || p[1] == '.'))) ++p;
+  // The sign of a measured value is random: stepping over a '-' without a branch saves a
+  // mispredicted jump on half the cells.
+  const bool minus = *p == '-';
+  p += minus;
+  if (*p == '+' && !minus && (is_digit(p[1]) || p[1] == '.')) ++p;
   const char* mantissa = p;
   p = skip_digits(p, end);
   std::size_t digits = static_cast<std::size_t>(p - mantissa);
@@ -380,13 +384,9 @@ inline Scanned scan_decimal(const char* p, const char* end) {
                                        1e8,  1e9,  1e10, 1e11, 1e12, 1e13, 1e14, 1e15,
                                        1e16, 1e17, 1e18, 1e19, 1e20, 1e21, 1e22};
   Scanned out;
-  bool negative = false;
-  if (*p == '-') {
-    negative = true;
-    ++p;
-  } else if (*p == '+' && (is_digit(p[1]) || p[1] == '.')) {
-    ++p;
-  }
+  const bool negative = *p == '-';  // without a branch, as in skip_number
+  p += negative;
+  if (*p == '+' && !negative && (is_digit(p[1]) || p[1] == '.')) ++p;
   std::uint64_t mantissa = 0;
   const char* integer = p;
   p = read_digits(p, end, mantissa);
@@ -420,7 +420,8 @@ inline Scanned scan_decimal(const char* p, const char* end) {
   if (total <= 19 && mantissa <= (std::uint64_t{1} << 53) && exponent >= -22 && exponent <= 22) {
     const auto m = static_cast<double>(mantissa);
     const double magnitude = exponent >= 0 ? m * kPowers[exponent] : m / kPowers[-exponent];
-    out.value = negative ? -magnitude : magnitude;
+    out.value = std::bit_cast<double>(std::bit_cast<std::uint64_t>(magnitude) |
+                                      (std::uint64_t{negative} << 63));
     out.exact = true;
   }
   return out;
