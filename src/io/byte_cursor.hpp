@@ -144,6 +144,10 @@ struct ImuColumns {
     for (int i = 0; i < 3; ++i) v[3 + i].push_back(s.accel[i]);
   }
 };
+
+/// Appends the parts to `out` in order, the seven columns on separate threads (the copy and the
+/// first touch of the output's pages are the cost), freeing each part's column once copied.
+void append_parts(ImuColumns& out, std::vector<ImuColumns>& parts);
 }  // namespace imunoise::io::detail
 
 namespace imunoise::io::detail {

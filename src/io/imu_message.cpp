@@ -12,6 +12,7 @@
 #include <bit>
 #include <exception>
 #include <thread>
+#include <type_traits>
 #include <cerrno>
 #include <cstring>
 
@@ -152,6 +153,26 @@ void parallel_for(std::size_t count, const std::function<void(std::size_t)>& wor
   for (auto& e : errors) {
     if (e) std::rethrow_exception(e);
   }
+}
+
+void append_parts(ImuColumns& out, std::vector<ImuColumns>& parts) {
+  std::size_t total = out.stamp_ns.size();
+  for (const auto& part : parts) total += part.stamp_ns.size();
+  parallel_for(7, [&](std::size_t column) {
+    auto move_column = [&](auto& destination, auto member) {
+      destination.reserve(total);
+      for (auto& part : parts) {
+        auto& source = member(part);
+        destination.insert(destination.end(), source.begin(), source.end());
+        std::remove_reference_t<decltype(source)>().swap(source);
+      }
+    };
+    if (column == 0) {
+      move_column(out.stamp_ns, [](ImuColumns& c) -> auto& { return c.stamp_ns; });
+    } else {
+      move_column(out.v[column - 1], [column](ImuColumns& c) -> auto& { return c.v[column - 1]; });
+    }
+  });
 }
 
 // ROS 1: Header{uint32 seq, uint32 sec, uint32 nsec, string frame_id}, then orientation (4

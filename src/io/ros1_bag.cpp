@@ -127,7 +127,7 @@ class BagReader {
         if (*chunk.fields.op != kChunk) cc.fail("chunk_pos does not point at a chunk record (corrupt index)");
         read_chunk(chunk, chunks_[k], false, parts[k]);
       });
-      for (auto& part : parts) columns_.append(part);
+      detail::append_parts(columns_, parts);
     } else {
       connections_.clear();
       scan(first_record);
@@ -257,6 +257,9 @@ class BagReader {
                        "'; fix: recompress the bag with 'rosbag compress --lz4' (none, bz2 and lz4 are read)");
     }
     ByteCursor c(data, where + " (decompressed)");
+    // Upper bound of the Imu messages the chunk can hold (a record takes > 300 bytes): the
+    // columns do not regrow, and capacity never touched costs no memory.
+    if (!scanning) out.reserve(data.size() / 300 + 1);
     while (!c.at_end()) {
       const Record r = next_record(c);
       if (*r.fields.op == kMessage) message(r, c, out);
