@@ -73,9 +73,9 @@ static void check_size(std::uint64_t expected, std::size_t compressed, const std
   }
 }
 
-Bytes decompress_bz2(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where) {
+void decompress_bz2(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where, Bytes& out) {
   check_size(expected, in.size(), where);
-  Bytes out(static_cast<std::size_t>(expected));
+  out.resize_uninitialized(static_cast<std::size_t>(expected));
   unsigned int out_len = static_cast<unsigned int>(expected);
   if (in.size() > 0xffffffffu) throw InputError(where + ": bz2 chunk too large");
   const int rc = BZ2_bzBuffToBuffDecompress(reinterpret_cast<char*>(out.data()), &out_len,
@@ -85,12 +85,11 @@ Bytes decompress_bz2(std::span<const unsigned char> in, std::uint64_t expected, 
     throw InputError(where + ": bz2 data does not decompress to the stated " + std::to_string(expected) +
                      " bytes (bzip2 error " + std::to_string(rc) + "); fix: the file is corrupt or cut short, copy it again");
   }
-  return out;
 }
 
-Bytes decompress_lz4_frame(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where) {
+void decompress_lz4_frame(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where, Bytes& out) {
   check_size(expected, in.size(), where);
-  Bytes out(static_cast<std::size_t>(expected));
+  out.resize_uninitialized(static_cast<std::size_t>(expected));
   LZ4F_dctx* ctx = nullptr;
   if (LZ4F_isError(LZ4F_createDecompressionContext(&ctx, LZ4F_VERSION))) {
     throw InputError(where + ": cannot create an lz4 context");
@@ -116,13 +115,18 @@ Bytes decompress_lz4_frame(std::span<const unsigned char> in, std::uint64_t expe
     throw InputError(where + ": lz4 data does not decompress to the stated " + std::to_string(expected) +
                      " bytes (got " + std::to_string(out_pos) + "); fix: the file is corrupt or cut short, copy it again");
   }
-  return out;
 }
 
-Bytes decompress_zstd(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where) {
+void decompress_zstd(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where, Bytes& out) {
   check_size(expected, in.size(), where);
-  Bytes out(static_cast<std::size_t>(expected));
-  const std::size_t n = ZSTD_decompress(out.data(), out.size(), in.data(), in.size());
+  out.resize_uninitialized(static_cast<std::size_t>(expected));
+  // One context per thread: ZSTD_decompress would allocate and initialise one per chunk.
+  struct FreeContext {
+    void operator()(ZSTD_DCtx* context) const { ZSTD_freeDCtx(context); }
+  };
+  thread_local const std::unique_ptr<ZSTD_DCtx, FreeContext> context(ZSTD_createDCtx());
+  if (!context) throw InputError(where + ": cannot create a zstd context (out of memory)");
+  const std::size_t n = ZSTD_decompressDCtx(context.get(), out.data(), out.size(), in.data(), in.size());
   if (ZSTD_isError(n)) {
     throw InputError(where + ": zstd data is corrupt (" + ZSTD_getErrorName(n) + "); fix: copy the file again");
   }
@@ -130,7 +134,6 @@ Bytes decompress_zstd(std::span<const unsigned char> in, std::uint64_t expected,
     throw InputError(where + ": zstd data decompresses to " + std::to_string(n) + " bytes, not the stated " +
                      std::to_string(expected) + "; fix: the file is corrupt, copy it again");
   }
-  return out;
 }
 
 void parallel_for(std::size_t count, const std::function<void(std::size_t)>& work) {

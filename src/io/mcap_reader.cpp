@@ -202,10 +202,10 @@ class McapReader {
     const std::uint64_t len = c.u64("chunk records length");
     const auto records = c.take(len, "chunk records");
     const std::string where = source_ + ": chunk at byte " + std::to_string(base + r.offset);
-    detail::Bytes owned;
+    detail::Bytes owned = buffers_.take();
     std::span<const unsigned char> data = records;
-    if (compression == "zstd") data = (owned = detail::decompress_zstd(records, uncompressed, where)).span();
-    else if (compression == "lz4") data = (owned = detail::decompress_lz4_frame(records, uncompressed, where)).span();
+    if (compression == "zstd") data = (detail::decompress_zstd(records, uncompressed, where, owned), owned.span());
+    else if (compression == "lz4") data = (detail::decompress_lz4_frame(records, uncompressed, where, owned), owned.span());
     else if (!compression.empty()) throw InputError(where + ": unknown chunk compression '" + compression + "'; fix: recompress with 'mcap convert' to zstd or lz4");
     else if (records.size() != uncompressed) throw InputError(where + ": uncompressed chunk size disagrees with its header; fix: the file is corrupt, copy it again");
     ByteCursor inner(data, where + " (decompressed)");
@@ -219,6 +219,7 @@ class McapReader {
       else if (m.op == kSchema && scanning_) add_schema(ByteCursor(m.content, inner.where()));
       else if (m.op == kChannel && scanning_) add_channel(ByteCursor(m.content, inner.where()));
     }
+    buffers_.give(std::move(owned));
   }
 
   // Linear scan of the data section: every record from the header to the data end.
@@ -330,6 +331,7 @@ class McapReader {
   bool scanning_ = false;
   bool counts_known_ = false;
   detail::ImuColumns columns_;
+  detail::BufferPool buffers_;
 };
 
 }  // namespace

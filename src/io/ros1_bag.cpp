@@ -239,7 +239,7 @@ class BagReader {
   void read_chunk(const Record& chunk, std::size_t file_offset, bool scanning, detail::ImuColumns& out) {
     const std::string where = source_ + ": chunk at byte " + std::to_string(file_offset);
     if (!chunk.fields.size) throw InputError(where + ": chunk without 'size'; fix: the file is corrupt, copy it again");
-    detail::Bytes owned;
+    detail::Bytes owned = buffers_.take();
     std::span<const unsigned char> data;
     const auto comp = chunk.fields.compression;
     if (comp == "none") {
@@ -249,9 +249,11 @@ class BagReader {
                          " bytes but its header says " + std::to_string(*chunk.fields.size) + "; fix: the file is corrupt, copy it again");
       }
     } else if (comp == "bz2") {
-      data = (owned = detail::decompress_bz2(chunk.data, *chunk.fields.size, where)).span();
+      detail::decompress_bz2(chunk.data, *chunk.fields.size, where, owned);
+      data = owned.span();
     } else if (comp == "lz4") {
-      data = (owned = detail::decompress_lz4_frame(chunk.data, *chunk.fields.size, where)).span();
+      detail::decompress_lz4_frame(chunk.data, *chunk.fields.size, where, owned);
+      data = owned.span();
     } else {
       throw InputError(where + ": unknown chunk compression '" + printable(comp) +
                        "'; fix: recompress the bag with 'rosbag compress --lz4' (none, bz2 and lz4 are read)");
@@ -265,6 +267,7 @@ class BagReader {
       if (*r.fields.op == kMessage) message(r, c, out);
       else if (*r.fields.op == kConnection && scanning) add_connection(r, c);
     }
+    buffers_.give(std::move(owned));
   }
 
   void message(const Record& r, const ByteCursor& c, detail::ImuColumns& out) {
@@ -299,6 +302,7 @@ class BagReader {
   std::set<std::uint32_t> wanted_;
   bool counting_ = false;
   detail::ImuColumns columns_;
+  detail::BufferPool buffers_;
 };
 
 }  // namespace
