@@ -171,6 +171,10 @@ struct ImuColumns {
     stamp_ns.insert(stamp_ns.end(), other.stamp_ns.begin(), other.stamp_ns.end());
     for (int i = 0; i < 6; ++i) v[i].insert(v[i].end(), other.v[i].begin(), other.v[i].end());
   }
+  void clear() {
+    stamp_ns.clear();
+    for (auto& c : v) c.clear();
+  }
   void push(const ImuSample& s) {
     stamp_ns.push_back(s.stamp_ns);
     for (int i = 0; i < 3; ++i) v[i].push_back(s.gyro[i]);
@@ -178,9 +182,12 @@ struct ImuColumns {
   }
 };
 
-/// Appends the parts to `out` in order, the seven columns on separate threads (the copy and the
-/// first touch of the output's pages are the cost), freeing each part's column once copied.
-void append_parts(ImuColumns& out, std::vector<ImuColumns>& parts);
+/// Runs decode(k, part) for every chunk k in [0, count), on parallel threads, batch by batch,
+/// and appends each batch's parts to `out` in chunk order (the seven columns on separate
+/// threads). The parts' storage is reused from batch to batch, so only `out` costs fresh pages;
+/// reserve it first. An exception from decode is rethrown: the first one in chunk order.
+void decode_chunks(std::size_t count, ImuColumns& out,
+                   const std::function<void(std::size_t, ImuColumns&)>& decode);
 }  // namespace imunoise::io::detail
 
 namespace imunoise::io::detail {

@@ -12,7 +12,6 @@
 #include <bit>
 #include <exception>
 #include <thread>
-#include <type_traits>
 #include <cerrno>
 #include <cstring>
 
@@ -158,24 +157,28 @@ void parallel_for(std::size_t count, const std::function<void(std::size_t)>& wor
   }
 }
 
-void append_parts(ImuColumns& out, std::vector<ImuColumns>& parts) {
-  std::size_t total = out.stamp_ns.size();
-  for (const auto& part : parts) total += part.stamp_ns.size();
-  parallel_for(7, [&](std::size_t column) {
-    auto move_column = [&](auto& destination, auto member) {
-      destination.reserve(total);
-      for (auto& part : parts) {
-        auto& source = member(part);
-        destination.insert(destination.end(), source.begin(), source.end());
-        std::remove_reference_t<decltype(source)>().swap(source);
+void decode_chunks(std::size_t count, ImuColumns& out,
+                   const std::function<void(std::size_t, ImuColumns&)>& decode) {
+  // Enough chunks per batch to keep the threads busy; few enough that the parts stay small.
+  constexpr std::size_t kBatch = 64;
+  std::vector<ImuColumns> parts(std::min(count, kBatch));
+  for (std::size_t first = 0; first < count; first += kBatch) {
+    const std::size_t n = std::min(kBatch, count - first);
+    parallel_for(n, [&](std::size_t i) {
+      parts[i].clear();
+      decode(first + i, parts[i]);
+    });
+    parallel_for(7, [&](std::size_t column) {
+      for (std::size_t i = 0; i < n; ++i) {
+        if (column == 0) {
+          out.stamp_ns.insert(out.stamp_ns.end(), parts[i].stamp_ns.begin(), parts[i].stamp_ns.end());
+        } else {
+          const auto& source = parts[i].v[column - 1];
+          out.v[column - 1].insert(out.v[column - 1].end(), source.begin(), source.end());
+        }
       }
-    };
-    if (column == 0) {
-      move_column(out.stamp_ns, [](ImuColumns& c) -> auto& { return c.stamp_ns; });
-    } else {
-      move_column(out.v[column - 1], [column](ImuColumns& c) -> auto& { return c.v[column - 1]; });
-    }
-  });
+    });
+  }
 }
 
 // ROS 1: Header{uint32 seq, uint32 sec, uint32 nsec, string frame_id}, then orientation (4

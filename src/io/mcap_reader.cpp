@@ -314,9 +314,8 @@ class McapReader {
     }
     // Chunks are independent: decompress and decode them in parallel (zstd is ~60 % of the
     // time), then concatenate in file order.
-    std::vector<detail::ImuColumns> parts(selected.size());
-    detail::parallel_for(selected.size(), [&](std::size_t k) { chunk(selected[k], 0, parts[k]); });
-    detail::append_parts(columns_, parts);
+    detail::decode_chunks(selected.size(), columns_,
+                          [&](std::size_t k, detail::ImuColumns& part) { chunk(selected[k], 0, part); });
     return true;
   }
 

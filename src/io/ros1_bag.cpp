@@ -119,15 +119,13 @@ class BagReader {
     if (index_pos != 0 && read_index(index_pos)) {
       select_connections();
       // Chunks are independent: decompress and decode them in parallel, concatenate in order.
-      std::vector<detail::ImuColumns> parts(chunks_.size());
-      detail::parallel_for(chunks_.size(), [&](std::size_t k) {
+      detail::decode_chunks(chunks_.size(), columns_, [&](std::size_t k, detail::ImuColumns& part) {
         ByteCursor cc(bytes_, source_);
         cc.seek(chunks_[k], "chunk_pos of a chunk info");
         const Record chunk = next_record(cc);
         if (*chunk.fields.op != kChunk) cc.fail("chunk_pos does not point at a chunk record (corrupt index)");
-        read_chunk(chunk, chunks_[k], false, parts[k]);
+        read_chunk(chunk, chunks_[k], false, part);
       });
-      detail::append_parts(columns_, parts);
     } else {
       connections_.clear();
       scan(first_record);
