@@ -182,10 +182,10 @@ struct ImuColumns {
   }
 };
 
-/// Runs decode(k, part) for every chunk k in [0, count), on parallel threads, batch by batch,
-/// and appends each batch's parts to `out` in chunk order (the seven columns on separate
-/// threads). The parts' storage is reused from batch to batch, so only `out` costs fresh pages;
-/// reserve it first. An exception from decode is rethrown: the first one in chunk order.
+/// Runs decode(k, part) for every chunk k in [0, count) on up to 8 threads (started once) and
+/// appends the parts to `out` in chunk order on the calling thread, at most 64 chunks decoded
+/// ahead. The parts' storage is reused, so only `out` costs fresh pages; reserve it first. An
+/// exception from decode is rethrown: the first one in chunk order.
 void decode_chunks(std::size_t count, ImuColumns& out,
                    const std::function<void(std::size_t, ImuColumns&)>& decode);
 }  // namespace imunoise::io::detail

@@ -9,6 +9,8 @@
 #include <zstd.h>
 
 #include <atomic>
+#include <condition_variable>
+#include <mutex>
 #include <bit>
 #include <exception>
 #include <thread>
@@ -157,27 +159,104 @@ void parallel_for(std::size_t count, const std::function<void(std::size_t)>& wor
   }
 }
 
+namespace {
+
+void append_part(ImuColumns& out, const ImuColumns& part) {
+  out.stamp_ns.insert(out.stamp_ns.end(), part.stamp_ns.begin(), part.stamp_ns.end());
+  for (int i = 0; i < 6; ++i) out.v[i].insert(out.v[i].end(), part.v[i].begin(), part.v[i].end());
+}
+
+}  // namespace
+
 void decode_chunks(std::size_t count, ImuColumns& out,
                    const std::function<void(std::size_t, ImuColumns&)>& decode) {
-  // Enough chunks per batch to keep the threads busy; few enough that the parts stay small.
-  constexpr std::size_t kBatch = 64;
-  std::vector<ImuColumns> parts(std::min(count, kBatch));
-  for (std::size_t first = 0; first < count; first += kBatch) {
-    const std::size_t n = std::min(kBatch, count - first);
-    parallel_for(n, [&](std::size_t i) {
-      parts[i].clear();
-      decode(first + i, parts[i]);
-    });
-    parallel_for(7, [&](std::size_t column) {
-      for (std::size_t i = 0; i < n; ++i) {
-        if (column == 0) {
-          out.stamp_ns.insert(out.stamp_ns.end(), parts[i].stamp_ns.begin(), parts[i].stamp_ns.end());
-        } else {
-          const auto& source = parts[i].v[column - 1];
-          out.v[column - 1].insert(out.v[column - 1].end(), source.begin(), source.end());
-        }
+  const std::size_t threads =
+      std::min<std::size_t>(count, std::max(1u, std::min(8u, std::thread::hardware_concurrency())));
+  if (threads <= 1) {
+    ImuColumns part;
+    for (std::size_t k = 0; k < count; ++k) {
+      part.clear();
+      decode(k, part);
+      append_part(out, part);
+    }
+    return;
+  }
+  // Workers decode chunks up to kWindow ahead of the one this thread appends next (and this
+  // thread decodes too whenever that one is not ready). No barrier between batches: on a
+  // shared machine a thread that loses the processor must not stall the others.
+  constexpr std::size_t kWindow = 64;
+  struct Slot {
+    ImuColumns part;
+    std::exception_ptr error;
+    bool done = false;
+  };
+  std::vector<Slot> slots(std::min(count, kWindow));
+  std::mutex mutex;
+  std::condition_variable work_ready;
+  std::condition_variable chunk_done;
+  std::size_t claimed = 0;
+  std::size_t taken = 0;
+  bool stop = false;
+  auto claimable = [&] { return !stop && claimed < count && claimed < taken + slots.size(); };
+  auto decode_claimed = [&](std::unique_lock<std::mutex>& lock) {  // lock held on entry and exit
+    const std::size_t k = claimed++;
+    Slot& slot = slots[k % slots.size()];
+    lock.unlock();
+    try {
+      slot.part.clear();
+      decode(k, slot.part);
+    } catch (...) {
+      slot.error = std::current_exception();
+    }
+    lock.lock();
+    slot.done = true;
+    chunk_done.notify_all();
+  };
+  std::vector<std::thread> workers;
+  struct Join {  // also when this thread throws: the workers finish their chunk and leave
+    std::vector<std::thread>& workers;
+    std::mutex& mutex;
+    bool& stop;
+    std::condition_variable& work_ready;
+    ~Join() {
+      {
+        std::lock_guard lock(mutex);
+        stop = true;
+      }
+      work_ready.notify_all();
+      for (auto& worker : workers) worker.join();
+    }
+  } join{workers, mutex, stop, work_ready};
+  for (std::size_t t = 1; t < threads; ++t) {
+    workers.emplace_back([&] {
+      std::unique_lock lock(mutex);
+      for (;;) {
+        work_ready.wait(lock, [&] { return stop || claimed >= count || claimable(); });
+        if (!claimable()) return;
+        decode_claimed(lock);
       }
     });
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    Slot& slot = slots[k % slots.size()];
+    {
+      std::unique_lock lock(mutex);
+      while (!slot.done) {
+        if (claimable()) {
+          decode_claimed(lock);
+        } else {
+          chunk_done.wait(lock);
+        }
+      }
+    }
+    if (slot.error) std::rethrow_exception(slot.error);  // the first error in chunk order
+    append_part(out, slot.part);
+    {
+      std::lock_guard lock(mutex);
+      slot.done = false;
+      ++taken;
+    }
+    work_ready.notify_all();
   }
 }
 
