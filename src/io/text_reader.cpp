@@ -604,7 +604,7 @@ class RowPool {
   }
 
  private:
-  static constexpr std::size_t kWindow = 8;
+  static constexpr std::size_t kWindow = 32;
 
   bool claimable() const { return claimed_ < count_ && claimed_ < taken_ + kWindow; }
 

@@ -30,7 +30,7 @@
 // of threads, started once per read, parses side by side with a row parser that only knows
 // plain rows (numbers, separators, blanks around them): it converts the value column (and the
 // time column) and only checks that the other cells are numbers; the calling thread takes the
-// chunks in file order (at most 8 parsed ahead, so memory is the output vectors plus a few
+// chunks in file order (at most 32 parsed ahead, so memory is the output vectors plus a few
 // chunks' rows). Any line the row parser does not take (comment, blank, quote, NaN, ragged,
 // error) goes to the line-by-line parser with the exact line number and row index, so values
 // and messages are the same as when reading line by line (tested). Measured in
