@@ -724,8 +724,10 @@ class TextParser {
     const auto expected = std::min(size / 2, static_cast<std::size_t>(rows_per_byte * static_cast<double>(size) * 1.05)) +
                           out_.values.size() + 16;
     if (expected <= out_.values.capacity()) return;
-    out_.values.reserve(expected);
-    if (out_.time_column) times_.reserve(expected);
+    // At least doubling: a stream's blocks each come here, and must not reallocate per block.
+    const std::size_t target = std::max(expected, 2 * out_.values.capacity());
+    out_.values.reserve(target);
+    if (out_.time_column) times_.reserve(target);
   }
 
   /// Called with the end of every chunk taken by bulk(): the bytes before it are no longer
