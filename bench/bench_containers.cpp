@@ -4,9 +4,11 @@
 // cache and memory bandwidth allow). Files are written by the real writers
 // (bench/bench_containers.sh makes them once, then runs this):
 //   build/default/bench/bench_containers FILE TOPIC [FILE TOPIC ...] [--benchmark_* flags]
-// Counters: messages, MB/s of file, target_ms.
+// Counters: messages, MB/s of file, target_ms, process_cpu_s (CPU time of all the process's
+// threads per read, user + system: the CPU column counts the main thread only).
 #include <benchmark/benchmark.h>
 #include <fcntl.h>
+#include <sys/resource.h>
 #include <unistd.h>
 
 #include <cstdio>
@@ -18,9 +20,17 @@
 
 namespace {
 
+double process_cpu_s() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
 void read_bytes(benchmark::State& state, std::string path) {
   const auto size = std::filesystem::file_size(path);
   std::vector<char> buffer(size);
+  const double cpu0 = process_cpu_s();
   for (auto _ : state) {
     const int fd = ::open(path.c_str(), O_RDONLY);
     std::size_t done = 0;
@@ -34,11 +44,13 @@ void read_bytes(benchmark::State& state, std::string path) {
   }
   state.counters["MB_per_s"] = benchmark::Counter(static_cast<double>(size) / 1e6,
                                                   benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["process_cpu_s"] = (process_cpu_s() - cpu0) / static_cast<double>(state.iterations());
 }
 
 void read_recording(benchmark::State& state, std::string path, std::string topic) {
   const auto size = std::filesystem::file_size(path);
   std::size_t messages = 0;
+  const double cpu0 = process_cpu_s();
   for (auto _ : state) {
     imunoise::io::RecordingOptions options;
     options.topic = topic;
@@ -49,6 +61,7 @@ void read_recording(benchmark::State& state, std::string path, std::string topic
   state.counters["messages"] = static_cast<double>(messages);
   state.counters["MB_per_s"] = benchmark::Counter(static_cast<double>(size) / 1e6,
                                                   benchmark::Counter::kIsIterationInvariantRate);
+  state.counters["process_cpu_s"] = (process_cpu_s() - cpu0) / static_cast<double>(state.iterations());
   state.counters["target_ms"] = 3000;
 }
 

@@ -2,14 +2,18 @@
 // 1e7 rows, 495 MB) read by read_text_file in three ways, side by side in one run:
 //   line_by_line_1thread  the plain single-threaded line-by-line read (bulk_rows = false)
 //   bulk_1thread          the bulk row parser on one thread
-//   bulk_2threads         the bulk row parser on two threads (byte ranges split at line ends)
-// and, as the floor, fread_only: the same file read into an 8 MiB buffer (the reader's block),
-// no parsing.
+//   bulk_2threads         the bulk row parser on two threads (the row pool: 1 MiB chunks cut at
+//                         line ends, parsed in place in the file's memory map)
+// and, as the floor, fread_only: the plain single-threaded read of the same file into an 8 MiB
+// buffer, no parsing.
 // The file is written once to $TMPDIR (rows from IMUNOISE_BENCH_ROWS, default 1e7) and read
 // from the page cache. Run by hand:
 //   build/default/bench/bench_text_reader --benchmark_counters_tabular=true
-// Counter GB_per_s: file bytes / wall time.
+// Counters: GB_per_s = file bytes / wall time; process_cpu_s = CPU time of all the process's
+// threads per read (getrusage: user + system), since the CPU column counts the main thread only.
+// Other sessions share this machine's 2 cores: note `uptime` beside every run.
 #include <benchmark/benchmark.h>
+#include <sys/resource.h>
 
 #include <cstdio>
 #include <cstdlib>
@@ -53,7 +57,15 @@ const std::filesystem::path& csv_file() {
   return path;
 }
 
-void set_rate(benchmark::State& state) {
+double process_cpu_s() {
+  rusage usage{};
+  getrusage(RUSAGE_SELF, &usage);
+  return static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
+}
+
+void set_rate(benchmark::State& state, double cpu_s) {
+  state.counters["process_cpu_s"] = cpu_s / static_cast<double>(state.iterations());
   state.counters["GB_per_s"] = benchmark::Counter(
       static_cast<double>(std::filesystem::file_size(csv_file())) * 1e-9,
       benchmark::Counter::kIsIterationInvariantRate);
@@ -64,15 +76,17 @@ void BM_read(benchmark::State& state, bool bulk, unsigned threads) {
   options.column = std::string("gy");
   options.bulk_rows = bulk;
   options.threads = threads;
+  const double cpu0 = process_cpu_s();
   for (auto _ : state) {
     const auto columns = imunoise::io::read_text_file(csv_file(), options);
     benchmark::DoNotOptimize(columns.values.data());
   }
-  set_rate(state);
+  set_rate(state, process_cpu_s() - cpu0);
 }
 
 void BM_fread_only(benchmark::State& state) {
   std::vector<char> buffer(std::size_t{1} << 23);
+  const double cpu0 = process_cpu_s();
   for (auto _ : state) {
     std::FILE* in = std::fopen(csv_file().c_str(), "rb");
     std::setvbuf(in, nullptr, _IONBF, 0);
@@ -81,7 +95,7 @@ void BM_fread_only(benchmark::State& state) {
     std::fclose(in);
     benchmark::DoNotOptimize(total);
   }
-  set_rate(state);
+  set_rate(state, process_cpu_s() - cpu0);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <span>
 #include <string>
 #include <string_view>
@@ -93,21 +94,53 @@ class MappedFile {
 class Bytes {
  public:
   Bytes() = default;
-  explicit Bytes(std::size_t n) : data_(n ? new unsigned char[n] : nullptr), size_(n) {}
+  explicit Bytes(std::size_t n) : data_(n ? new unsigned char[n] : nullptr), size_(n), capacity_(n) {}
   [[nodiscard]] unsigned char* data() { return data_.get(); }
   [[nodiscard]] std::size_t size() const { return size_; }
   [[nodiscard]] std::span<const unsigned char> span() const { return {data_.get(), size_}; }
+  /// Size n, contents undefined; the storage is kept when it is large enough.
+  void resize_uninitialized(std::size_t n) {
+    if (n > capacity_) {
+      data_.reset();
+      data_.reset(new unsigned char[n]);
+      capacity_ = n;
+    }
+    size_ = n;
+  }
 
  private:
   std::unique_ptr<unsigned char[]> data_;
   std::size_t size_ = 0;
+  std::size_t capacity_ = 0;
 };
 
-/// Decompressors; `expected` is the uncompressed size the container states, which the output
-/// must match exactly. Throw InputError prefixed with `where`.
-Bytes decompress_bz2(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where);
-Bytes decompress_lz4_frame(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where);
-Bytes decompress_zstd(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where);
+/// Decompression buffers handed back and forth between the threads that decode chunks: a
+/// fresh buffer per chunk would have the kernel map and zero new pages for every chunk (a
+/// quarter of the CPU time of a zstd MCAP read before they were reused).
+class BufferPool {
+ public:
+  Bytes take() {
+    std::lock_guard lock(mutex_);
+    if (free_.empty()) return {};
+    Bytes out = std::move(free_.back());
+    free_.pop_back();
+    return out;
+  }
+  void give(Bytes&& bytes) {
+    std::lock_guard lock(mutex_);
+    free_.push_back(std::move(bytes));
+  }
+
+ private:
+  std::mutex mutex_;
+  std::vector<Bytes> free_;
+};
+
+/// Decompressors into `out` (resized to `expected`, the uncompressed size the container
+/// states, which the output must match exactly). Throw InputError prefixed with `where`.
+void decompress_bz2(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where, Bytes& out);
+void decompress_lz4_frame(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where, Bytes& out);
+void decompress_zstd(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where, Bytes& out);
 
 /// Runs work(i) for i in [0, count) on up to hardware_concurrency threads (chunks of a
 /// container are independent); the first exception in index order is rethrown.
@@ -138,12 +171,23 @@ struct ImuColumns {
     stamp_ns.insert(stamp_ns.end(), other.stamp_ns.begin(), other.stamp_ns.end());
     for (int i = 0; i < 6; ++i) v[i].insert(v[i].end(), other.v[i].begin(), other.v[i].end());
   }
+  void clear() {
+    stamp_ns.clear();
+    for (auto& c : v) c.clear();
+  }
   void push(const ImuSample& s) {
     stamp_ns.push_back(s.stamp_ns);
     for (int i = 0; i < 3; ++i) v[i].push_back(s.gyro[i]);
     for (int i = 0; i < 3; ++i) v[3 + i].push_back(s.accel[i]);
   }
 };
+
+/// Runs decode(k, part) for every chunk k in [0, count) on up to 8 threads (started once) and
+/// appends the parts to `out` in chunk order on the calling thread, at most 64 chunks decoded
+/// ahead. The parts' storage is reused, so only `out` costs fresh pages; reserve it first. An
+/// exception from decode is rethrown: the first one in chunk order.
+void decode_chunks(std::size_t count, ImuColumns& out,
+                   const std::function<void(std::size_t, ImuColumns&)>& decode);
 }  // namespace imunoise::io::detail
 
 namespace imunoise::io::detail {

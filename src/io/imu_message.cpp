@@ -9,6 +9,8 @@
 #include <zstd.h>
 
 #include <atomic>
+#include <condition_variable>
+#include <mutex>
 #include <bit>
 #include <exception>
 #include <thread>
@@ -72,9 +74,9 @@ static void check_size(std::uint64_t expected, std::size_t compressed, const std
   }
 }
 
-Bytes decompress_bz2(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where) {
+void decompress_bz2(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where, Bytes& out) {
   check_size(expected, in.size(), where);
-  Bytes out(static_cast<std::size_t>(expected));
+  out.resize_uninitialized(static_cast<std::size_t>(expected));
   unsigned int out_len = static_cast<unsigned int>(expected);
   if (in.size() > 0xffffffffu) throw InputError(where + ": bz2 chunk too large");
   const int rc = BZ2_bzBuffToBuffDecompress(reinterpret_cast<char*>(out.data()), &out_len,
@@ -84,12 +86,11 @@ Bytes decompress_bz2(std::span<const unsigned char> in, std::uint64_t expected, 
     throw InputError(where + ": bz2 data does not decompress to the stated " + std::to_string(expected) +
                      " bytes (bzip2 error " + std::to_string(rc) + "); fix: the file is corrupt or cut short, copy it again");
   }
-  return out;
 }
 
-Bytes decompress_lz4_frame(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where) {
+void decompress_lz4_frame(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where, Bytes& out) {
   check_size(expected, in.size(), where);
-  Bytes out(static_cast<std::size_t>(expected));
+  out.resize_uninitialized(static_cast<std::size_t>(expected));
   LZ4F_dctx* ctx = nullptr;
   if (LZ4F_isError(LZ4F_createDecompressionContext(&ctx, LZ4F_VERSION))) {
     throw InputError(where + ": cannot create an lz4 context");
@@ -115,13 +116,18 @@ Bytes decompress_lz4_frame(std::span<const unsigned char> in, std::uint64_t expe
     throw InputError(where + ": lz4 data does not decompress to the stated " + std::to_string(expected) +
                      " bytes (got " + std::to_string(out_pos) + "); fix: the file is corrupt or cut short, copy it again");
   }
-  return out;
 }
 
-Bytes decompress_zstd(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where) {
+void decompress_zstd(std::span<const unsigned char> in, std::uint64_t expected, const std::string& where, Bytes& out) {
   check_size(expected, in.size(), where);
-  Bytes out(static_cast<std::size_t>(expected));
-  const std::size_t n = ZSTD_decompress(out.data(), out.size(), in.data(), in.size());
+  out.resize_uninitialized(static_cast<std::size_t>(expected));
+  // One context per thread: ZSTD_decompress would allocate and initialise one per chunk.
+  struct FreeContext {
+    void operator()(ZSTD_DCtx* context) const { ZSTD_freeDCtx(context); }
+  };
+  thread_local const std::unique_ptr<ZSTD_DCtx, FreeContext> context(ZSTD_createDCtx());
+  if (!context) throw InputError(where + ": cannot create a zstd context (out of memory)");
+  const std::size_t n = ZSTD_decompressDCtx(context.get(), out.data(), out.size(), in.data(), in.size());
   if (ZSTD_isError(n)) {
     throw InputError(where + ": zstd data is corrupt (" + ZSTD_getErrorName(n) + "); fix: copy the file again");
   }
@@ -129,7 +135,6 @@ Bytes decompress_zstd(std::span<const unsigned char> in, std::uint64_t expected,
     throw InputError(where + ": zstd data decompresses to " + std::to_string(n) + " bytes, not the stated " +
                      std::to_string(expected) + "; fix: the file is corrupt, copy it again");
   }
-  return out;
 }
 
 void parallel_for(std::size_t count, const std::function<void(std::size_t)>& work) {
@@ -151,6 +156,107 @@ void parallel_for(std::size_t count, const std::function<void(std::size_t)>& wor
   for (auto& t : pool) t.join();
   for (auto& e : errors) {
     if (e) std::rethrow_exception(e);
+  }
+}
+
+namespace {
+
+void append_part(ImuColumns& out, const ImuColumns& part) {
+  out.stamp_ns.insert(out.stamp_ns.end(), part.stamp_ns.begin(), part.stamp_ns.end());
+  for (int i = 0; i < 6; ++i) out.v[i].insert(out.v[i].end(), part.v[i].begin(), part.v[i].end());
+}
+
+}  // namespace
+
+void decode_chunks(std::size_t count, ImuColumns& out,
+                   const std::function<void(std::size_t, ImuColumns&)>& decode) {
+  const std::size_t threads =
+      std::min<std::size_t>(count, std::max(1u, std::min(8u, std::thread::hardware_concurrency())));
+  if (threads <= 1) {
+    ImuColumns part;
+    for (std::size_t k = 0; k < count; ++k) {
+      part.clear();
+      decode(k, part);
+      append_part(out, part);
+    }
+    return;
+  }
+  // Workers decode chunks up to kWindow ahead of the one this thread appends next (and this
+  // thread decodes too whenever that one is not ready). No barrier between batches: on a
+  // shared machine a thread that loses the processor must not stall the others.
+  constexpr std::size_t kWindow = 64;
+  struct Slot {
+    ImuColumns part;
+    std::exception_ptr error;
+    bool done = false;
+  };
+  std::vector<Slot> slots(std::min(count, kWindow));
+  std::mutex mutex;
+  std::condition_variable work_ready;
+  std::condition_variable chunk_done;
+  std::size_t claimed = 0;
+  std::size_t taken = 0;
+  bool stop = false;
+  auto claimable = [&] { return !stop && claimed < count && claimed < taken + slots.size(); };
+  auto decode_claimed = [&](std::unique_lock<std::mutex>& lock) {  // lock held on entry and exit
+    const std::size_t k = claimed++;
+    Slot& slot = slots[k % slots.size()];
+    lock.unlock();
+    try {
+      slot.part.clear();
+      decode(k, slot.part);
+    } catch (...) {
+      slot.error = std::current_exception();
+    }
+    lock.lock();
+    slot.done = true;
+    chunk_done.notify_all();
+  };
+  std::vector<std::thread> workers;
+  struct Join {  // also when this thread throws: the workers finish their chunk and leave
+    std::vector<std::thread>& workers;
+    std::mutex& mutex;
+    bool& stop;
+    std::condition_variable& work_ready;
+    ~Join() {
+      {
+        std::lock_guard lock(mutex);
+        stop = true;
+      }
+      work_ready.notify_all();
+      for (auto& worker : workers) worker.join();
+    }
+  } join{workers, mutex, stop, work_ready};
+  for (std::size_t t = 1; t < threads; ++t) {
+    workers.emplace_back([&] {
+      std::unique_lock lock(mutex);
+      for (;;) {
+        work_ready.wait(lock, [&] { return stop || claimed >= count || claimable(); });
+        if (!claimable()) return;
+        decode_claimed(lock);
+      }
+    });
+  }
+  for (std::size_t k = 0; k < count; ++k) {
+    Slot& slot = slots[k % slots.size()];
+    {
+      std::unique_lock lock(mutex);
+      while (!slot.done) {
+        if (claimable()) {
+          decode_claimed(lock);
+        } else {
+          chunk_done.wait(lock);
+        }
+      }
+    }
+    if (slot.error) std::rethrow_exception(slot.error);  // the first error in chunk order
+    append_part(out, slot.part);
+    {
+      std::lock_guard lock(mutex);
+      slot.done = false;
+      ++taken;
+    }
+    work_ready.notify_all();
   }
 }
 

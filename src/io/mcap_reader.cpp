@@ -176,6 +176,23 @@ class McapReader {
     out.push(s);
   }
 
+  // A well-formed message of a channel read from the summary, without the cursor that
+  // message() builds (its copy of the chunk's name was an allocation per message). Returns
+  // false when message() must handle it: another channel, or anything to report.
+  bool decode_fast(std::span<const unsigned char> content, detail::ImuColumns& out) const {
+    constexpr std::size_t header = 2 + 4 + 8 + 8;  // channel id, sequence, log and publish time
+    if (content.size() < header) return false;
+    const auto id = static_cast<std::uint16_t>(content[0] | (content[1] << 8));
+    const auto it = decoder_.find(id);
+    if (it == decoder_.end()) return true;  // another channel: nothing to do
+    detail::ImuSample s;
+    std::string error;
+    const auto data = content.subspan(header);
+    if (it->second == 2 ? !detail::decode_cdr_imu(data, s, error) : !detail::decode_ros1_imu(data, s)) return false;
+    out.push(s);
+    return true;
+  }
+
   void chunk(const Rec& r, std::uint64_t base, detail::ImuColumns& out) {
     ByteCursor c = content(r, "chunk", base);
     c.take(16, "chunk message times");
@@ -185,19 +202,24 @@ class McapReader {
     const std::uint64_t len = c.u64("chunk records length");
     const auto records = c.take(len, "chunk records");
     const std::string where = source_ + ": chunk at byte " + std::to_string(base + r.offset);
-    detail::Bytes owned;
+    detail::Bytes owned = buffers_.take();
     std::span<const unsigned char> data = records;
-    if (compression == "zstd") data = (owned = detail::decompress_zstd(records, uncompressed, where)).span();
-    else if (compression == "lz4") data = (owned = detail::decompress_lz4_frame(records, uncompressed, where)).span();
+    if (compression == "zstd") data = (detail::decompress_zstd(records, uncompressed, where, owned), owned.span());
+    else if (compression == "lz4") data = (detail::decompress_lz4_frame(records, uncompressed, where, owned), owned.span());
     else if (!compression.empty()) throw InputError(where + ": unknown chunk compression '" + compression + "'; fix: recompress with 'mcap convert' to zstd or lz4");
     else if (records.size() != uncompressed) throw InputError(where + ": uncompressed chunk size disagrees with its header; fix: the file is corrupt, copy it again");
     ByteCursor inner(data, where + " (decompressed)");
+    // Upper bound of the Imu messages a chunk can hold (a CDR Imu record takes > 300 bytes):
+    // reserving it spares the columns their regrowth, and untouched capacity costs nothing.
+    if (!scanning_) out.reserve(data.size() / 300 + 1);
     while (!inner.at_end()) {
       const Rec m = next(inner);
+      if (m.op == kMessage && !scanning_ && decode_fast(m.content, out)) continue;
       if (m.op == kMessage) message(ByteCursor(m.content, inner.where()), out);
       else if (m.op == kSchema && scanning_) add_schema(ByteCursor(m.content, inner.where()));
       else if (m.op == kChannel && scanning_) add_channel(ByteCursor(m.content, inner.where()));
     }
+    buffers_.give(std::move(owned));
   }
 
   // Linear scan of the data section: every record from the header to the data end.
@@ -292,9 +314,8 @@ class McapReader {
     }
     // Chunks are independent: decompress and decode them in parallel (zstd is ~60 % of the
     // time), then concatenate in file order.
-    std::vector<detail::ImuColumns> parts(selected.size());
-    detail::parallel_for(selected.size(), [&](std::size_t k) { chunk(selected[k], 0, parts[k]); });
-    for (auto& part : parts) columns_.append(part);
+    detail::decode_chunks(selected.size(), columns_,
+                          [&](std::size_t k, detail::ImuColumns& part) { chunk(selected[k], 0, part); });
     return true;
   }
 
@@ -309,6 +330,7 @@ class McapReader {
   bool scanning_ = false;
   bool counts_known_ = false;
   detail::ImuColumns columns_;
+  detail::BufferPool buffers_;
 };
 
 }  // namespace

@@ -119,15 +119,13 @@ class BagReader {
     if (index_pos != 0 && read_index(index_pos)) {
       select_connections();
       // Chunks are independent: decompress and decode them in parallel, concatenate in order.
-      std::vector<detail::ImuColumns> parts(chunks_.size());
-      detail::parallel_for(chunks_.size(), [&](std::size_t k) {
+      detail::decode_chunks(chunks_.size(), columns_, [&](std::size_t k, detail::ImuColumns& part) {
         ByteCursor cc(bytes_, source_);
         cc.seek(chunks_[k], "chunk_pos of a chunk info");
         const Record chunk = next_record(cc);
         if (*chunk.fields.op != kChunk) cc.fail("chunk_pos does not point at a chunk record (corrupt index)");
-        read_chunk(chunk, chunks_[k], false, parts[k]);
+        read_chunk(chunk, chunks_[k], false, part);
       });
-      for (auto& part : parts) columns_.append(part);
     } else {
       connections_.clear();
       scan(first_record);
@@ -239,7 +237,7 @@ class BagReader {
   void read_chunk(const Record& chunk, std::size_t file_offset, bool scanning, detail::ImuColumns& out) {
     const std::string where = source_ + ": chunk at byte " + std::to_string(file_offset);
     if (!chunk.fields.size) throw InputError(where + ": chunk without 'size'; fix: the file is corrupt, copy it again");
-    detail::Bytes owned;
+    detail::Bytes owned = buffers_.take();
     std::span<const unsigned char> data;
     const auto comp = chunk.fields.compression;
     if (comp == "none") {
@@ -249,19 +247,25 @@ class BagReader {
                          " bytes but its header says " + std::to_string(*chunk.fields.size) + "; fix: the file is corrupt, copy it again");
       }
     } else if (comp == "bz2") {
-      data = (owned = detail::decompress_bz2(chunk.data, *chunk.fields.size, where)).span();
+      detail::decompress_bz2(chunk.data, *chunk.fields.size, where, owned);
+      data = owned.span();
     } else if (comp == "lz4") {
-      data = (owned = detail::decompress_lz4_frame(chunk.data, *chunk.fields.size, where)).span();
+      detail::decompress_lz4_frame(chunk.data, *chunk.fields.size, where, owned);
+      data = owned.span();
     } else {
       throw InputError(where + ": unknown chunk compression '" + printable(comp) +
                        "'; fix: recompress the bag with 'rosbag compress --lz4' (none, bz2 and lz4 are read)");
     }
     ByteCursor c(data, where + " (decompressed)");
+    // Upper bound of the Imu messages the chunk can hold (a record takes > 300 bytes): the
+    // columns do not regrow, and capacity never touched costs no memory.
+    if (!scanning) out.reserve(data.size() / 300 + 1);
     while (!c.at_end()) {
       const Record r = next_record(c);
       if (*r.fields.op == kMessage) message(r, c, out);
       else if (*r.fields.op == kConnection && scanning) add_connection(r, c);
     }
+    buffers_.give(std::move(owned));
   }
 
   void message(const Record& r, const ByteCursor& c, detail::ImuColumns& out) {
@@ -296,6 +300,7 @@ class BagReader {
   std::set<std::uint32_t> wanted_;
   bool counting_ = false;
   detail::ImuColumns columns_;
+  detail::BufferPool buffers_;
 };
 
 }  // namespace

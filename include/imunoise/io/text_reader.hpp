@@ -21,15 +21,20 @@
 // when no line applies), names the column and quotes the offending text (at most 40
 // characters), and ends with "fix: ...". Nothing is skipped silently.
 //
-// Speed: input is read in blocks (8 MiB by default) and parsed in place (fast_float, or an exact
-// fast path for decimals of at most 19 digits); memory is the output vectors plus one block. Once the first data row has fixed the layout, each
-// block's complete lines are split at line ends into one byte range per thread and parsed by a
-// row parser that only knows plain rows (numbers, separators, blanks around them): it converts
-// the value column (and the time column) and only checks that the other cells are numbers.
-// Any line it does not take (comment, blank, quote, NaN, ragged, error) goes to the line-by-line
-// parser with the exact line number and row index, so values and messages are the same as
-// when reading line by line (tested). Measured in bench/bench_text_reader.cpp and
-// docs/performance.md.
+// Speed: a regular file is memory-mapped and parsed in place (no copy; the page faults that read
+// it happen in the parsing threads, overlapped with parsing, and the pages already parsed are
+// dropped from the mapping so that resident memory does not grow with the file); pipes and
+// streams are read in blocks (8 MiB by default). Numbers are converted by fast_float or an exact
+// fast path for decimals of at most 19 digits. Once the first data row has fixed the layout, the
+// complete lines are cut at line ends into chunks of 1 MiB (at most block_bytes) that a pool
+// of threads, started once per read, parses side by side with a row parser that only knows
+// plain rows (numbers, separators, blanks around them): it converts the value column (and the
+// time column) and only checks that the other cells are numbers; the calling thread takes the
+// chunks in file order (at most 32 parsed ahead, so memory is the output vectors plus a few
+// chunks' rows). Any line the row parser does not take (comment, blank, quote, NaN, ragged,
+// error) goes to the line-by-line parser with the exact line number and row index, so values
+// and messages are the same as when reading line by line (tested). Measured in
+// bench/bench_text_reader.cpp and docs/performance.md.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -94,9 +99,8 @@ struct TextReadOptions {
   /// Unit of the time column (a time unit: s, ms, us, ns). Empty: seconds, unless the values
   /// look like integer nanoseconds (see looks_like_nanoseconds in timestamps.hpp).
   std::optional<Unit> time_unit;
-  /// Size of the blocks read from the file or stream (bytes, >= 1). Tuning only: results do not
-  /// depend on it.
-  /// 8 MiB: large enough that starting the threads of a block costs little against parsing it.
+  /// Size of the blocks read from a stream or a file that cannot be mapped (bytes, >= 1); the
+  /// parallel parser's chunks are at most this size. Tuning only: results do not depend on it.
   std::size_t block_bytes = std::size_t{1} << 23;
   /// Threads that parse the rows of a block side by side (0: all cores). Tuning only: values,
   /// line numbers and error messages do not depend on it.
