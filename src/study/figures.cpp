@@ -239,11 +239,15 @@ void davar_figure(const nlohmann::json& ch, nlohmann::json& figures) {
     series.push_back({{"name", "outside the stationarity band"}, {"style", "points"}, {"symbol", "x"},
                       {"size", 8}, {"color", "#ff2a2a"}, {"x", fx}, {"y", fy}});
   }
+  // One legend entry for all the change times (the later lines share the first's group).
+  std::string changes;
+  for (const auto& t : d["change_times_s"]) changes += (changes.empty() ? "" : ", ") + fmt_g(t.get<double>());
+  const std::string changes_name = "changes near t = " + changes + " s";
   int k = 0;
   for (const auto& t : d["change_times_s"]) {
-    series.push_back({{"name", "change near " + fmt_g(t.get<double>()) + " s"}, {"style", "dashed"},
-                      {"color", "#ff2a2a"}, {"width", 2.0}, {"x", {t, t}}, {"y", {tau_lo, tau_hi}}});
-    if (k++ > 0) series.back()["group"] = "changes";
+    series.push_back({{"name", changes_name}, {"style", "dashed"}, {"color", "#ff2a2a"}, {"width", 2.0},
+                      {"x", {t, t}}, {"y", {tau_lo, tau_hi}}});
+    if (k++ > 0) series.back()["group"] = changes_name;
   }
   const bool stationary = d["stationary"].get<bool>();
   std::string verdict = stationary ? "stationary" : "not stationary";
@@ -261,6 +265,7 @@ void davar_figure(const nlohmann::json& ch, nlohmann::json& figures) {
        {"x_log", false},
        {"y_log", true},
        {"x_hover", "t"},
+       {"legend", "below"},
        {"x_range", {0.0, t_hi}},
        {"y_range", {tau_lo, tau_hi}},
        {"series", std::move(series)}});

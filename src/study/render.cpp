@@ -395,7 +395,9 @@ std::string gnuplot_script(const json& figure, const std::string& svg_path,
   }
   s += "set grid xtics ytics mxtics mytics lc rgb '#d8d8d8' lw 1, lc rgb '#eeeeee' lw 1\n";
   s += std::string("set border lc rgb '#444444'\nset key ") +
-       (str(figure["legend"]) == "outside" ? "outside right top" : "inside left bottom") +
+       (str(figure["legend"]) == "outside" ? "outside right top"
+        : str(figure["legend"]) == "below" ? "below horizontal"
+                                           : "inside left bottom") +
        " noenhanced box lc rgb '#bbbbbb' opaque width 1 spacing 1.1 font ',11'\nset bars small\n";
   if (figure.contains("x_range")) {
     s += fmt::format("set xrange [{:.10g}:{:.10g}]\n", num(figure["x_range"][0]), num(figure["x_range"][1]));
@@ -582,9 +584,11 @@ constexpr const char* kScript = R"JS(
     return t;
   }
   function heatmap(s, fig) {
+    // Shape corners are data values on every axis type (Plotly 2: unlike annotations, no log10
+    // on log axes).
     const shapes = [];
-    const lx = function (v) { return fig.x_log ? Math.log10(v) : v; };
-    const ly = function (v) { return fig.y_log ? Math.log10(v) : v; };
+    const lx = function (v) { return v; };
+    const ly = function (v) { return v; };
     const span = s.z_log_range[1] - s.z_log_range[0] || 1;
     s.z.forEach(function (z, i) {
       shapes.push({ type: 'rect', layer: 'below', line: { width: 0 }, xref: 'x', yref: 'y',
@@ -629,6 +633,20 @@ constexpr const char* kScript = R"JS(
       Plotly.newPlot(div, traces, layout, { responsive: true, displaylogo: false, displayModeBar: 'hover' }).then(function () {
         div.setAttribute('data-rendered-points', String(div.querySelectorAll('.scatterlayer .point').length));
         div.setAttribute('data-rendered-traces', String(div.querySelectorAll('.scatterlayer .trace').length));
+        // Heat-map cells drawn, and how many fall outside the axes' ranges (misplaced).
+        const shapes = (div._fullLayout && div._fullLayout.shapes) || [];
+        const inside = function (ax, a, b) {
+          const r = ax.type === 'log' ? ax.range.map(function (v) { return Math.pow(10, v); }) : ax.range;
+          const lo = Math.min(r[0], r[1]), hi = Math.max(r[0], r[1]), eps = 1e-9 * (hi - lo);
+          return a >= lo - eps && b <= hi + eps && a < b;
+        };
+        let outside = 0;
+        shapes.forEach(function (sh) {
+          if (!inside(div._fullLayout.xaxis, Math.min(sh.x0, sh.x1), Math.max(sh.x0, sh.x1)) ||
+              !inside(div._fullLayout.yaxis, Math.min(sh.y0, sh.y1), Math.max(sh.y0, sh.y1))) outside += 1;
+        });
+        div.setAttribute('data-rendered-shapes', String(div.querySelectorAll('.shapelayer path').length));
+        div.setAttribute('data-shapes-outside', String(outside));
         drawn += 1;
         document.body.setAttribute('data-figures-drawn', String(drawn));
       }).catch(note);

@@ -97,6 +97,14 @@ inline void expect_every_figure_drawn(const std::string& dom, const nlohmann::js
     std::smatch traces;
     ASSERT_TRUE(std::regex_search(tag, traces, std::regex("data-rendered-traces=\"(\\d+)\"")));
     EXPECT_EQ(std::stoul(traces[1]), figures[i]["series"].size()) << "figure " << i;
+    // Heat maps: one shape per cell, every one inside the axes (the cells tile the ranges).
+    std::size_t cells = 0;
+    for (const auto& s : figures[i]["series"]) cells += s["style"] == "heatmap" ? s["z"].size() : 0;
+    std::smatch shapes, outside;
+    ASSERT_TRUE(std::regex_search(tag, shapes, std::regex("data-rendered-shapes=\"(\\d+)\"")));
+    EXPECT_EQ(std::stoul(shapes[1]), cells) << "figure " << i;
+    ASSERT_TRUE(std::regex_search(tag, outside, std::regex("data-shapes-outside=\"(\\d+)\"")));
+    EXPECT_EQ(std::stoul(outside[1]), 0u) << "figure " << i << ": heat-map cells outside the axes";
   }
   EXPECT_NE(dom.find("class=\"main-svg\""), std::string::npos);
 }
