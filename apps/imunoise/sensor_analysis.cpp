@@ -41,7 +41,8 @@ namespace {
 // the horizon only: a fleet of thousands keeps one number per model and quantity.
 nlohmann::json sensor_navigation(const study::Record& record, const fit::FitResult& result, double hours) {
   if (!study::is_gyro(record) || result.coefficients.quantity != Quantity::angular_rate) {
-    return {{"error", "not computed: the record is not an angular rate with a unit (--units deg/s, ...)"}};
+    return {{"t_s", hours * 3600.0},
+            {"error", "not computed: the record is not an angular rate with a unit (--units deg/s, ...)"}};
   }
   study::StudyOptions options;
   options.nav_hours = hours;
@@ -58,7 +59,7 @@ nlohmann::json sensor_navigation(const study::Record& record, const fit::FitResu
     }
     return {{"t_s", t_s}, {"latitude_deg", options.nav_latitude_deg}, {"models", std::move(models)}};
   } catch (const InputError& e) {
-    return {{"error", std::string("not computed: ") + e.what()}};
+    return {{"t_s", hours * 3600.0}, {"error", std::string("not computed: ") + e.what()}};
   }
 }
 

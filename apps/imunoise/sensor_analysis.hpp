@@ -37,7 +37,7 @@ struct SensorAnalysisOptions {
 /// Reads one record and returns its fit document, with "spec_comparison" (null without a
 /// spec) and, with options.nav, "nav": the study's navigation error of the sensor's fit at the
 /// horizon, {"t_s", "latitude_deg", "models": [{"model", "lat_deg", "path_m", "lon_deg"}]}, or
-/// {"error": why} when it cannot be computed (not a gyro, no unit, ...). Throws InputError
+/// {"t_s", "error": why} when it cannot be computed (not a gyro, no unit, ...). Throws InputError
 /// naming the file for anything wrong with the record.
 nlohmann::json analyze_sensor(const InputOptions& input, const SensorAnalysisOptions& options);
 

@@ -197,6 +197,7 @@ nlohmann::json fleet_document(std::span<const SensorOutcome> sensors, const Flee
       if (s.fit.is_null() || !s.fit.contains("nav")) continue;
       ++requested;
       const auto& n = s.fit["nav"];
+      if (n.contains("t_s") && n["t_s"].is_number()) t_s = n["t_s"].get<double>();
       if (!n.contains("models")) {
         ++missing;
         continue;

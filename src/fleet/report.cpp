@@ -549,8 +549,9 @@ std::string fleet_markdown(const json& fleet, const json& figures, const std::st
   if (!t.failed.empty()) {
     md += "\n## Files that could not be analysed\n\n" + md_table({"file", "error"}, t.failed);
   }
-  if (!t.nav.empty()) {
-    md += "\n" + nav_heading(fleet) + "\n\n" + nav_intro(fleet) + "\n\n" + md_table(t.nav_head, t.nav);
+  if (fleet["summary"].contains("nav")) {
+    md += "\n" + nav_heading(fleet) + "\n\n" + nav_intro(fleet) + "\n";
+    if (!t.nav.empty()) md += "\n" + md_table(t.nav_head, t.nav);
   }
   md += study::markdown_figures(figures);
   md += "## Notes\n\n";
@@ -597,9 +598,9 @@ std::string fleet_html(const json& fleet, const json& figures, const std::string
   if (!t.failed.empty()) {
     h += "<h2>Files that could not be analysed</h2>\n" + html_table({"file", "error"}, t.failed);
   }
-  if (!t.nav.empty()) {
+  if (fleet["summary"].contains("nav")) {
     h += "<h2>" + esc(nav_heading(fleet).substr(3)) + "</h2>\n<p class=\"soft\">" + esc(nav_intro(fleet)) +
-         "</p>\n" + html_table(t.nav_head, t.nav, 1);
+         "</p>\n" + (t.nav.empty() ? std::string() : html_table(t.nav_head, t.nav, 1));
   }
   std::string list;
   for (const auto& n : notes(fleet)) list += "<li>" + esc(n) + "</li>";

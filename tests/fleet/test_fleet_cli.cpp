@@ -228,6 +228,29 @@ TEST(FleetCli, NavigationErrorPerSensorAndItsDistribution) {
   EXPECT_TRUE(std::filesystem::exists(out + "/figures/fleet_nav.png"));
 }
 
+// --nav on records that are not angular rates with a unit: each sensor says why it has no
+// navigation error, the summary counts them, the report says so; a bad horizon is refused.
+TEST(FleetCli, NavigationNotComputedIsReportedPerSensor) {
+  const Fleet& fleet = Fleet::shared();
+  TempDir out_dir;
+  const std::string out = out_dir.file("out");
+  const auto r = run_cli({"fleet", fleet.files[0], fleet.files[1], "--nav", "-o", out});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(slurp(out + "/fleet.json"));
+  for (const auto& s : doc["sensors"]) {
+    EXPECT_NE(s["fit"]["nav"]["error"].get<std::string>().find("not an angular rate with a unit"),
+              std::string::npos) << s["fit"]["nav"];
+  }
+  EXPECT_EQ(doc["summary"]["nav"]["n_sensors"], 0);
+  EXPECT_EQ(doc["summary"]["nav"]["n_not_computed"], 2);
+  EXPECT_EQ(doc["summary"]["nav"]["t_s"], 3600.0);
+  EXPECT_NE(slurp(out + "/report.md").find("(2 not computed: not an angular rate with a unit)"), std::string::npos);
+  const auto bad = run_cli({"fleet", fleet.files[0], "--units", "deg/s", "--nav", "--nav-hours", "0", "-o",
+                            out_dir.file("bad")});
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("--nav-hours must be positive"), std::string::npos) << bad.err;
+}
+
 TEST(FleetCli, StrictStopsAtTheFirstBadFile) {
   const Fleet& fleet = Fleet::shared();
   TempDir out_dir;
