@@ -502,7 +502,7 @@ std::string summary_line(const json& fleet) {
   std::string rates;
   for (const auto& r : s["rates_hz"]) rates += (rates.empty() ? "" : ", ") + g(r, 6);
   return fmt::format("{} files, {} analysed, {} failed; sample rates {} Hz; {}; {} outliers, {} "
-                     "sensors flagged.",
+                     "sensors flagged (failed files included).",
                      s["n_files"].dump(), s["n_analysed"].dump(), s["n_failed"].dump(),
                      rates.empty() ? "–" : rates,
                      s["datasheet"].is_null() ? std::string("no datasheet given")
@@ -542,7 +542,7 @@ std::string fleet_markdown(const json& fleet, const json& figures, const std::st
   }
   md += "\n## Outliers and flagged sensors\n\n";
   if (t.flagged.empty()) {
-    md += "No sensor is flagged.\n";
+    md += "No analysed sensor is flagged.\n";
   } else {
     md += md_table({"sensor", "flags", "reasons"}, t.flagged);
   }
@@ -593,7 +593,7 @@ std::string fleet_html(const json& fleet, const json& figures, const std::string
          "verdict:</p>\n" + html_table(head, t.verdicts, 1);
   }
   h += "<h2>Outliers and flagged sensors</h2>\n";
-  h += t.flagged.empty() ? std::string("<p class=\"soft\">No sensor is flagged.</p>\n")
+  h += t.flagged.empty() ? std::string("<p class=\"soft\">No analysed sensor is flagged.</p>\n")
                          : html_table({"sensor", "flags", "reasons"}, t.flagged);
   if (!t.failed.empty()) {
     h += "<h2>Files that could not be analysed</h2>\n" + html_table({"file", "error"}, t.failed);

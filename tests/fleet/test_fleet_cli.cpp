@@ -251,6 +251,22 @@ TEST(FleetCli, NavigationNotComputedIsReportedPerSensor) {
   EXPECT_NE(bad.err.find("--nav-hours must be positive"), std::string::npos) << bad.err;
 }
 
+// A fleet of which no file can be analysed still gets its report: the failed file and why,
+// no figure (nothing to draw), no made-up distribution.
+TEST(FleetCli, ReportOfAFleetWithNothingAnalysed) {
+  const Fleet& fleet = Fleet::shared();
+  TempDir out_dir;
+  const std::string out = out_dir.file("out");
+  const auto r = run_cli({"fleet", fleet.files[3], "--units", "deg/s", "--spec", "tg100", "-o", out});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const std::string md = slurp(out + "/report.md");
+  EXPECT_NE(md.find("broken.txt | "), std::string::npos) << md;
+  EXPECT_NE(md.find("broken.txt:3: column 0"), std::string::npos) << md;
+  EXPECT_NE(md.find("0 analysed, 1 failed"), std::string::npos);
+  EXPECT_EQ(md.find("![") , std::string::npos) << "no figure";
+  EXPECT_TRUE(fleet::fleet_figures(nlohmann::json::parse(slurp(out + "/fleet.json"))).empty());
+}
+
 TEST(FleetCli, StrictStopsAtTheFirstBadFile) {
   const Fleet& fleet = Fleet::shared();
   TempDir out_dir;
