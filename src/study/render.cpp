@@ -394,10 +394,9 @@ std::string gnuplot_script(const json& figure, const std::string& svg_path,
     }
   }
   s += "set grid xtics ytics mxtics mytics lc rgb '#d8d8d8' lw 1, lc rgb '#eeeeee' lw 1\n";
+  const std::string legend = figure.value("legend", std::string());  // optional key
   s += std::string("set border lc rgb '#444444'\nset key ") +
-       (str(figure["legend"]) == "outside" ? "outside right top"
-        : str(figure["legend"]) == "below" ? "below horizontal"
-                                           : "inside left bottom") +
+       (legend == "outside" ? "outside right top" : legend == "below" ? "below horizontal" : "inside left bottom") +
        " noenhanced box lc rgb '#bbbbbb' opaque width 1 spacing 1.1 font ',11'\nset bars small\n";
   if (figure.contains("x_range")) {
     s += fmt::format("set xrange [{:.10g}:{:.10g}]\n", num(figure["x_range"][0]), num(figure["x_range"][1]));
