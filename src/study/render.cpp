@@ -381,11 +381,11 @@ std::string gnuplot_script(const json& figure, const std::string& svg_path,
     const bool narrow = figure.contains("y_range") && num(figure["y_range"][1]) < 100.0 * num(figure["y_range"][0]);
     s += narrow ? "set logscale y\nset format y '%.3g'\n" : "set logscale y\nset format y '10^{%L}'\n";
     if (narrow) {
-      // Decade tics alone would leave the axis unlabelled: 1, 2, 5 x 10^k within the range.
+      // Decade tics alone would leave the axis unlabelled: 1, 2, 3, 5 x 10^k within the range.
       const double lo = num(figure["y_range"][0]), hi = num(figure["y_range"][1]);
       std::string tics;
       for (int k = static_cast<int>(std::floor(std::log10(lo))); k <= static_cast<int>(std::ceil(std::log10(hi))); ++k) {
-        for (const double d : {1.0, 2.0, 5.0}) {
+        for (const double d : {1.0, 2.0, 3.0, 5.0}) {
           const double v = d * std::pow(10.0, k);
           if (v >= lo && v <= hi) tics += fmt::format("{}{:.3g}", tics.empty() ? "" : ", ", v);
         }
