@@ -44,6 +44,8 @@ struct AnalyzeOptionsCli {
   std::string binary;
   std::size_t channels = 1;
   bool allow_gaps = false;
+  bool davar = false;            // dynamic Allan variance heat map and stationarity verdict
+  double davar_window_s = 0.0;
   std::string spec;
   std::string geometry;
   std::string estimators = "oadev";
@@ -138,6 +140,8 @@ std::vector<ChannelInput> plan_channels(const AnalyzeOptionsCli& o,
     base.scale = o.scale;
     base.sensitivity = o.sensitivity;
     base.allow_gaps = o.allow_gaps;
+    base.davar = o.davar;
+    base.davar_window_s = o.davar_window_s;
     const bool binary = !o.binary.empty() ||
                         (file != "-" && io::binary_format_from_extension(file).has_value());
     std::vector<std::string> columns = wanted;
@@ -274,6 +278,9 @@ void setup_analyze(CLI::App& app) {
   command->add_option("--channels", o->channels, "interleaved channels in binary input")
       ->capture_default_str();
   command->add_flag("--allow-gaps", o->allow_gaps, "treat gaps in the time column as equally spaced");
+  command->add_flag("--davar", o->davar,
+                    "dynamic Allan variance per channel: heat map and stationarity verdict in the report");
+  command->add_option("--davar-window", o->davar_window_s, "DAVAR window (s); default record / 20");
   std::string names;
   for (const auto& name : builtin_spec_names()) names += (names.empty() ? "" : ", ") + name;
   command->add_option("--spec", o->spec,

@@ -22,6 +22,8 @@
 #include "imunoise/error.hpp"
 #include "imunoise/fit/report.hpp"
 #include "imunoise/fleet/fleet.hpp"
+#include "imunoise/fleet/report.hpp"
+#include "imunoise/study/write.hpp"
 #include "imunoise/spec/spec.hpp"
 #include "input_options.hpp"
 #include "mpi_session.hpp"
@@ -44,6 +46,10 @@ struct FleetOptionsCli {
   double level = 0.95;
   std::string spec;
   double outlier_z = 3.5;
+  std::string title = "imunoise fleet report";
+  bool nav = false;
+  double nav_hours = 1.0;
+  bool quiet = false;
 };
 
 constexpr int kTaskTag = 31;
@@ -58,6 +64,9 @@ SensorAnalysisOptions analysis_options(const FleetOptionsCli& options) {
   if (!a.fit.IsValid(&why)) throw InputError("fit options: " + why);
   a.taus = options.taus;
   a.spec = options.spec;
+  a.nav = options.nav;
+  a.nav_hours = options.nav_hours;
+  if (!(a.nav_hours > 0.0)) throw InputError("--nav-hours must be positive");
   return a;
 }
 
@@ -206,6 +215,13 @@ void run_fleet(const FleetOptionsCli& options) {
         }
       }
       if (error.empty()) {
+        try {
+          study::check_report_dir(options.dir, options.force);
+        } catch (const InputError& e) {
+          error = e.what();
+        }
+      }
+      if (error.empty()) {
         std::filesystem::create_directories(dir, ec);
         if (ec) error = options.dir + ": cannot create the directory (" + ec.message() + ")";
       }
@@ -236,6 +252,12 @@ void run_fleet(const FleetOptionsCli& options) {
   const nlohmann::json doc = fleet::fleet_document(results, rules);
   write_output({json_path, options.force}, doc.dump(1) + "\n");
   write_output({csv_path, options.force}, fleet::fleet_csv(doc));
+  study::WriteOptions report_options;
+  report_options.force = options.force;
+  const auto report = fleet::write_fleet_report(doc, options.dir, report_options, options.title);
+  if (!options.quiet) {
+    for (const auto& note : report.notes) fmt::print(stderr, "imunoise: note: {}\n", note);
+  }
   const auto& summary = doc["summary"];
   std::string pass = "no datasheet (--spec)";
   if (!summary["datasheet"].is_null()) {
@@ -244,10 +266,10 @@ void run_fleet(const FleetOptionsCli& options) {
                        summary["datasheet"]["spec"].get<std::string>(),
                        100.0 * summary["datasheet"]["pass_rate"].get<double>());
   }
-  fmt::print("fleet: {} files, {} analysed, {} failed; {}; {} outliers; wrote {} and {}\n",
+  fmt::print("fleet: {} files, {} analysed, {} failed; {}; {} outliers; wrote {}, {} and the report {}\n",
              summary["n_files"].get<std::size_t>(), summary["n_analysed"].get<std::size_t>(),
              summary["n_failed"].get<std::size_t>(), pass, summary["outliers"].size(), json_path,
-             csv_path);
+             csv_path, (dir / "report.html").string());
 }
 
 }  // namespace
@@ -256,11 +278,14 @@ void setup_fleet(CLI::App& app) {
   auto options = std::make_shared<FleetOptionsCli>();
   auto* command = app.add_subcommand(
       "fleet", "many sensors (one record each): per-sensor fit and datasheet verdict, coefficient "
-               "distributions, pass rate, outliers -> DIR/fleet.json, DIR/fleet.csv; also under "
+               "distributions, pass rate, outliers -> DIR/fleet.json, DIR/fleet.csv, DIR/report.html|md "
+               "with figures; also under "
                "mpirun -np P");
   command->add_option("files", options->files, "records, one per sensor")->required();
   command->add_option("-o,--output", options->dir, "output directory")->required();
-  command->add_flag("--force", options->force, "replace existing fleet.json / fleet.csv");
+  command->add_flag("--force", options->force, "replace existing fleet.json / fleet.csv / report");
+  command->add_option("--title", options->title, "title of the report")->capture_default_str();
+  command->add_flag("--quiet", options->quiet, "no notes on stderr about the report");
   command->add_flag("--strict", options->strict, "stop at the first file that cannot be analysed");
   command->add_flag("--keep-going", options->keep_going,
                     "report a file that cannot be analysed and go on (the default)");
@@ -284,6 +309,10 @@ void setup_fleet(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::Range(0.5, 0.999));
   command->add_option("--spec", options->spec, "datasheet: built-in name (tg100) or YAML file");
+  command->add_flag("--nav", options->nav,
+                    "each gyro's navigation error at the horizon (the study's models and latitude) "
+                    "in fleet.json/csv and its distribution in the report");
+  command->add_option("--nav-hours", options->nav_hours, "navigation horizon (h)")->capture_default_str();
   command->add_option("--outlier-z", options->outlier_z,
                       "robust z-score on log10 of a coefficient above which a sensor is an outlier")
       ->capture_default_str();

@@ -7,6 +7,7 @@
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
 #include "imunoise/study/fit_stage.hpp"
+#include "imunoise/study/study.hpp"
 #include "spec_exports.hpp"
 #include "study_record.hpp"
 
@@ -34,6 +35,36 @@ FitOutcome fit_curve(const PhaseRecord& record, std::size_t n_phase,
   return out;
 }
 
+namespace {
+
+// The study's navigation error of one sensor's fit (the same gyro on all three axes), kept at
+// the horizon only: a fleet of thousands keeps one number per model and quantity.
+nlohmann::json sensor_navigation(const study::Record& record, const fit::FitResult& result, double hours) {
+  if (!study::is_gyro(record) || result.coefficients.quantity != Quantity::angular_rate) {
+    return {{"t_s", hours * 3600.0},
+            {"error", "not computed: the record is not an angular rate with a unit (--units deg/s, ...)"}};
+  }
+  study::StudyOptions options;
+  options.nav_hours = hours;
+  try {
+    const auto nav = study::navigation_json(result.coefficients, options);
+    nlohmann::json models = nlohmann::json::array();
+    double t_s = 0.0;
+    for (const auto& m : nav["models"]) {
+      const std::size_t last = m["t_s"].size() - 1;
+      t_s = m["t_s"][last].get<double>();
+      models.push_back({{"model", m["model"]}, {"lat_deg", m["lat_deg"][last]},
+                        {"path_m", m["path_m"][last]},
+                        {"lon_deg", m["lon_deg"].is_array() ? m["lon_deg"][last] : nlohmann::json(nullptr)}});
+    }
+    return {{"t_s", t_s}, {"latitude_deg", options.nav_latitude_deg}, {"models", std::move(models)}};
+  } catch (const InputError& e) {
+    return {{"t_s", hours * 3600.0}, {"error", std::string("not computed: ") + e.what()}};
+  }
+}
+
+}  // namespace
+
 nlohmann::json analyze_sensor(const InputOptions& input, const SensorAnalysisOptions& options) {
   // The study's fit stage (the same checks and fit as `fit` and `analyze`).
   const study::Record record = to_study_record(load_phase(input));
@@ -42,6 +73,7 @@ nlohmann::json analyze_sensor(const InputOptions& input, const SensorAnalysisOpt
   SpecExportOptions spec;
   spec.spec = options.spec;
   json["spec_comparison"] = run_spec_exports(spec, result.coefficients, record.rate_hz);
+  if (options.nav) json["nav"] = sensor_navigation(record, result, options.nav_hours);
   return json;
 }
 

@@ -30,10 +30,15 @@ struct SensorAnalysisOptions {
   fit::FitOptions fit;
   std::string taus = "octave";  ///< tau grid of the Allan curve
   std::string spec;             ///< --spec NAME|FILE, empty: no datasheet verdict
+  bool nav = false;             ///< --nav: the navigation error at the horizon (gyros)
+  double nav_hours = 1.0;       ///< the horizon (h), the study's default
 };
 
 /// Reads one record and returns its fit document, with "spec_comparison" (null without a
-/// spec). Throws InputError naming the file for anything wrong with it.
+/// spec) and, with options.nav, "nav": the study's navigation error of the sensor's fit at the
+/// horizon, {"t_s", "latitude_deg", "models": [{"model", "lat_deg", "path_m", "lon_deg"}]}, or
+/// {"t_s", "error": why} when it cannot be computed (not a gyro, no unit, ...). Throws InputError
+/// naming the file for anything wrong with the record.
 nlohmann::json analyze_sensor(const InputOptions& input, const SensorAnalysisOptions& options);
 
 }  // namespace imunoise::cli

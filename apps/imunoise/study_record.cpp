@@ -15,6 +15,7 @@ study::Record to_study_record(PhaseRecord&& record, std::string name) {
   r.timing = std::move(record.timing);
   r.segments = std::move(record.segments);
   r.rate_si = std::move(record.rate_si);
+  r.davar = std::move(record.davar);
   if (!record.channel.empty()) {
     r.table_notes.push_back(record.format + ": " + (record.stream.empty() ? "" : record.stream + " ") +
                             "channel " + record.channel);

@@ -185,6 +185,48 @@ nlohmann::json fleet_document(std::span<const SensorOutcome> sensors, const Flee
                  {"terms", terms}};
   }
 
+  // Navigation error at the horizon (fleet --nav): per model and quantity, over the sensors
+  // that have it.
+  nlohmann::json nav = nullptr;
+  {
+    std::map<std::string, std::map<std::string, std::vector<double>>> values;  // model -> key -> values
+    std::vector<std::string> order;
+    double t_s = 0.0, latitude_deg = 0.0;
+    std::size_t requested = 0, missing = 0;
+    for (const auto& s : sensors) {
+      if (s.fit.is_null() || !s.fit.contains("nav")) continue;
+      ++requested;
+      const auto& n = s.fit["nav"];
+      if (n.contains("t_s") && n["t_s"].is_number()) t_s = n["t_s"].get<double>();
+      if (!n.contains("models")) {
+        ++missing;
+        continue;
+      }
+      t_s = n["t_s"].get<double>();
+      latitude_deg = n["latitude_deg"].get<double>();
+      for (const auto& m : n["models"]) {
+        const std::string model = m["model"].get<std::string>();
+        if (std::find(order.begin(), order.end(), model) == order.end()) order.push_back(model);
+        for (const char* key : {"lat_deg", "path_m", "lon_deg"}) {
+          if (m[key].is_number() && std::isfinite(m[key].get<double>())) values[model][key].push_back(m[key].get<double>());
+        }
+      }
+    }
+    if (requested > 0) {
+      nlohmann::json models = nlohmann::json::array();
+      for (const auto& model : order) {
+        nlohmann::json m{{"model", model}};
+        for (const char* key : {"lat_deg", "path_m", "lon_deg"}) {
+          const auto& v = values[model][key];
+          m[key] = v.empty() ? nlohmann::json(nullptr) : quantiles_json(quantiles(v));
+        }
+        models.push_back(std::move(m));
+      }
+      nav = {{"t_s", t_s}, {"latitude_deg", latitude_deg}, {"n_sensors", requested - missing},
+             {"n_not_computed", missing}, {"models", std::move(models)}};
+    }
+  }
+
   nlohmann::json outliers = nlohmann::json::array();
   nlohmann::json flagged = nlohmann::json::array();
   for (const auto& s : doc["sensors"]) {
@@ -209,6 +251,7 @@ nlohmann::json fleet_document(std::span<const SensorOutcome> sensors, const Flee
       {"outliers", outliers},
       {"flagged", flagged},
       {"datasheet", datasheet}};
+  if (!nav.is_null()) doc["summary"]["nav"] = std::move(nav);
   return doc;
 }
 
@@ -224,7 +267,16 @@ std::string fleet_csv(const nlohmann::json& fleet) {
               csv_field(std::string(name) + "_ci_low [" + unit + "]") + "," +
               csv_field(std::string(name) + "_ci_high [" + unit + "]") + "," + name + "_identified";
   }
-  header += ",datasheet_all_pass,flags,reasons\n";
+  header += ",datasheet_all_pass";
+  std::vector<std::string> nav_models;
+  if (fleet["summary"].contains("nav")) {
+    for (const auto& m : fleet["summary"]["nav"]["models"]) {
+      nav_models.push_back(m["model"].get<std::string>());
+      header += ",nav_" + nav_models.back() + "_path_m,nav_" + nav_models.back() + "_lat_deg,nav_" +
+                nav_models.back() + "_lon_deg";
+    }
+  }
+  header += ",flags,reasons\n";
   std::string out = header;
   for (const auto& s : fleet["sensors"]) {
     const auto& fit = s["fit"];
@@ -234,6 +286,7 @@ std::string fleet_csv(const nlohmann::json& fleet) {
       cells.insert(cells.end(), {"", "", ""});
       for (std::size_t k = 0; k < names.size(); ++k) cells.insert(cells.end(), {"", "", "", ""});
       cells.emplace_back("");
+      for (std::size_t k = 0; k < nav_models.size(); ++k) cells.insert(cells.end(), {"", "", ""});
     } else {
       cells.push_back(csv_number(fit["rate_hz"]));
       cells.push_back(fit["n_samples"].is_number() ? std::to_string(fit["n_samples"].get<std::size_t>()) : "");
@@ -249,6 +302,17 @@ std::string fleet_csv(const nlohmann::json& fleet) {
       }
       const auto& sc = fit.contains("spec_comparison") ? fit["spec_comparison"] : nlohmann::json();
       cells.push_back(sc.is_object() ? (sc.value("all_pass", false) ? "yes" : "no") : "");
+      for (const auto& model : nav_models) {
+        nlohmann::json found;
+        if (fit.contains("nav") && fit["nav"].contains("models")) {
+          for (const auto& m : fit["nav"]["models"]) {
+            if (m["model"] == model) found = m;
+          }
+        }
+        for (const char* key : {"path_m", "lat_deg", "lon_deg"}) {
+          cells.push_back(found.is_object() ? csv_number(found[key]) : std::string());
+        }
+      }
     }
     std::string flags, reasons;
     for (const auto& f : s["flags"]) flags += (flags.empty() ? "" : ";") + f.get<std::string>();

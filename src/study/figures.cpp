@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 namespace imunoise::study {
@@ -36,6 +37,12 @@ const nlohmann::json* find_curve(const nlohmann::json& channel, const std::strin
     if (c["estimator"] == label) return &c;
   }
   return nullptr;
+}
+
+std::string fmt_g(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
 }
 
 std::string ci_text(const nlohmann::json& doc) {
@@ -183,6 +190,86 @@ void fused_figure(const nlohmann::json& doc, nlohmann::json& figures) {
        {"y_log", true},
        {"series", std::move(series)}});
 }
+// The dynamic Allan deviation of a channel as a heat map: time (window centre) x tau, colour
+// the window's Allan deviation; cells outside the stationarity band crossed; the times where
+// the flagged state changes as dashed lines.
+void davar_figure(const nlohmann::json& ch, nlohmann::json& figures) {
+  if (!ch.contains("davar") || ch["davar"].is_null()) return;
+  const auto& d = ch["davar"];
+  const std::string name = ch["name"].get<std::string>();
+  const double step = d["step_s"].get<double>(), window = d["window_s"].get<double>();
+  nlohmann::json x = nlohmann::json::array(), y = nlohmann::json::array(), z = nlohmann::json::array();
+  nlohmann::json xl = nlohmann::json::array(), xh = nlohmann::json::array();
+  nlohmann::json yl = nlohmann::json::array(), yh = nlohmann::json::array();
+  nlohmann::json fx = nlohmann::json::array(), fy = nlohmann::json::array();
+  double z_lo = INFINITY, z_hi = 0.0, t_hi = 0.0;
+  const auto& taus = d["tau_s"];
+  for (std::size_t w = 0; w < d["adev"].size(); ++w) {
+    const double centre = d["window_start_s"][w].get<double>() + window / 2.0;
+    t_hi = std::max(t_hi, centre + step / 2.0);
+    for (std::size_t j = 0; j < taus.size(); ++j) {
+      const auto& v = d["adev"][w][j];
+      if (!v.is_number()) continue;
+      const double tau = taus[j].get<double>();
+      x.push_back(centre);
+      y.push_back(tau);
+      z.push_back(v);
+      xl.push_back(centre - step / 2.0);
+      xh.push_back(centre + step / 2.0);
+      yl.push_back(tau / std::sqrt(2.0));
+      yh.push_back(tau * std::sqrt(2.0));
+      z_lo = std::min(z_lo, v.get<double>());
+      z_hi = std::max(z_hi, v.get<double>());
+      if (d["flagged"][w][j].get<bool>()) {
+        fx.push_back(centre);
+        fy.push_back(tau);
+      }
+    }
+  }
+  if (z.empty()) return;
+  const std::string unit = d["unit"].get<std::string>();
+  nlohmann::json series = nlohmann::json::array();
+  series.push_back({{"name", "Allan deviation per window"}, {"style", "heatmap"}, {"color", 0},
+                    {"x", x}, {"y", y}, {"z", z}, {"x_low", xl}, {"x_high", xh}, {"y_low", yl},
+                    {"y_high", yh}, {"z_label", "Allan deviation [" + unit + "]"},
+                    {"z_log_range", {std::log10(z_lo), std::log10(z_hi)}}});
+  const double tau_lo = taus.front().get<double>() / std::sqrt(2.0);
+  const double tau_hi = taus.back().get<double>() * std::sqrt(2.0);
+  if (!fx.empty()) {
+    series.push_back({{"name", "outside the stationarity band"}, {"style", "points"}, {"symbol", "x"},
+                      {"size", 8}, {"color", "#ff2a2a"}, {"x", fx}, {"y", fy}});
+  }
+  // One legend entry for all the change times (the later lines share the first's group).
+  std::string changes;
+  for (const auto& t : d["change_times_s"]) changes += (changes.empty() ? "" : ", ") + fmt_g(t.get<double>());
+  const std::string changes_name = "changes near t = " + changes + " s";
+  int k = 0;
+  for (const auto& t : d["change_times_s"]) {
+    series.push_back({{"name", changes_name}, {"style", "dashed"}, {"color", "#ff2a2a"}, {"width", 2.0},
+                      {"x", {t, t}}, {"y", {tau_lo, tau_hi}}});
+    if (k++ > 0) series.back()["group"] = changes_name;
+  }
+  const bool stationary = d["stationary"].get<bool>();
+  std::string verdict = stationary ? "stationary" : "not stationary";
+  figures.push_back(
+      {{"id", "davar_" + name},
+       {"title", "Dynamic Allan deviation of " + name + ": " + verdict},
+       {"caption", "Overlapping Allan deviation in windows of " + fmt_g(window) + " s every " +
+                       fmt_g(step) + " s (colour, log scale) against the window's centre and tau. "
+                       "Crosses: windows whose Allan variance lies outside the chi-squared band "
+                       "around the median of all windows (" + d["n_flagged_windows"].dump() + " of " +
+                       d["n_windows"].dump() + " windows flagged); dashed: where the flagged state "
+                       "changes. Verdict: " + verdict + "."},
+       {"x_label", "time, window centre [s]"},
+       {"y_label", "averaging time tau [s]"},
+       {"x_log", false},
+       {"y_log", true},
+       {"x_hover", "t"},
+       {"legend", "below"},
+       {"x_range", {0.0, t_hi}},
+       {"y_range", {tau_lo, tau_hi}},
+       {"series", std::move(series)}});
+}
 }  // namespace
 
 const char* palette_color(int index) {
@@ -311,6 +398,7 @@ nlohmann::json build_figures(const nlohmann::json& doc) {
   }
   fused_figure(doc, figures);
   nav_figures(doc, figures);
+  for (const auto& ch : channels) davar_figure(ch, figures);
   for (auto& f : figures) {
     if (f["x_log"].get<bool>()) set_ranges(f);
   }

@@ -119,6 +119,21 @@ std::string quote_gp(const std::string& s) {
   return out + "\"";
 }
 
+// The heat maps' colour scale: viridis at five stops, shared by gnuplot and Plotly.
+constexpr std::pair<double, const char*> kHeatScale[] = {
+    {0.0, "#440154"}, {0.25, "#3b528b"}, {0.5, "#21918c"}, {0.75, "#5ec962"}, {1.0, "#fde725"}};
+
+std::string heat_scale_js() {
+  std::string out = "[";
+  for (const auto& [f, c] : kHeatScale) out += fmt::format("{}[{:g},'{}']", out.size() > 1 ? "," : "", f, c);
+  return out + "]";
+}
+
+std::string series_color(const json& series) {
+  return series["color"].is_string() ? series["color"].get<std::string>()
+                                     : std::string(palette_color(series["color"].get<int>()));
+}
+
 std::string level_text(const json& doc) {
   return fmt::format("{:g} %", 100.0 * doc["options"]["fit_level"].get<double>());
 }
@@ -145,6 +160,25 @@ std::vector<NavRow> nav_rows(const json& doc) {
     }
   }
   return rows;
+}
+
+// One sentence per channel with a dynamic Allan variance: its stationarity verdict.
+std::vector<std::pair<std::string, std::string>> davar_lines(const json& doc) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& ch : doc["channels"]) {
+    if (!ch.contains("davar") || ch["davar"].is_null()) continue;
+    const auto& d = ch["davar"];
+    std::string text = fmt::format(
+        "{}: {} windows of {} s every {} s at {} taus; {} ({} windows outside the chi-squared band)",
+        str(ch["name"]), d["n_windows"].dump(), g(d["window_s"]), g(d["step_s"]), d["tau_s"].size(),
+        d["stationary"].get<bool>() ? "stationary" : "NOT stationary", d["n_flagged_windows"].dump());
+    std::string changes;
+    for (const auto& t : d["change_times_s"]) changes += (changes.empty() ? "" : ", ") + g(t, 5);
+    if (!changes.empty()) text += "; changes near t = " + changes + " s";
+    if (num(d["suggested_skip_s"]) > 0.0) text += "; suggested --skip " + g(d["suggested_skip_s"], 5) + " s";
+    out.emplace_back(str(ch["name"]), text + ".");
+  }
+  return out;
 }
 
 std::string fixed(double v, int digits) {
@@ -241,6 +275,12 @@ std::string render_markdown(const json& doc) {
                         fixed(r.lat_deg, 3), fixed(r.path_m / 1000.0, 3), fixed(r.lon_deg, 3));
     }
   }
+  if (const auto davars = davar_lines(doc); !davars.empty()) {
+    md += "\n## Stationarity (dynamic Allan variance)\n\n";
+    for (const auto& [name, text] : davars) md += "- " + md_escape(text) + "\n";
+    md += "\nRule: a window is flagged when its Allan variance at a tau lies outside the chi-squared band "
+          "around the median of all windows (Bonferroni over windows and taus).\n";
+  }
   if (!doc["redundant"].is_null()) {
     const auto& r = doc["redundant"];
     md += fmt::format("\n## Redundant unit ({})\n\n{} sensors; fused axis gain {} (fused "
@@ -253,12 +293,7 @@ std::string render_markdown(const json& doc) {
   if (doc.contains("reference") && !doc["reference"].is_null()) {
     md += "\n## " + str(doc["reference"]["title"]) + "\n\n" + str(doc["reference"]["markdown"]) + "\n";
   }
-  md += "\n## Figures\n\n";
-  for (const auto& f : doc["figures"]) {
-    const std::string stem = file_stem(str(f["id"]));
-    md += fmt::format("### {}\n\n![{}](figures/{}.svg)\n\n{} ([PNG](figures/{}.png))\n\n",
-                      str(f["title"]), str(f["title"]), stem, str(f["caption"]), stem);
-  }
+  md += markdown_figures(doc["figures"]);
   std::string notes;
   for (const auto& n : doc["notes"]) notes += "- " + str(n) + "\n";
   for (const auto& ch : doc["channels"]) {
@@ -341,10 +376,28 @@ std::string gnuplot_script(const json& figure, const std::string& svg_path,
   s += "set xlabel " + quote_gp(str(figure["x_label"])) + " noenhanced\n";
   s += "set ylabel " + quote_gp(str(figure["y_label"])) + " noenhanced\n";
   if (figure["x_log"].get<bool>()) s += "set logscale x\nset format x '10^{%L}'\n";
-  if (figure["y_log"].get<bool>()) s += "set logscale y\nset format y '10^{%L}'\n";
+  if (figure["y_log"].get<bool>()) {
+    // Powers of ten, unless the range is narrower than two decades (a fleet's spread).
+    const bool narrow = figure.contains("y_range") && num(figure["y_range"][1]) < 100.0 * num(figure["y_range"][0]);
+    s += narrow ? "set logscale y\nset format y '%.3g'\n" : "set logscale y\nset format y '10^{%L}'\n";
+    if (narrow) {
+      // Decade tics alone would leave the axis unlabelled: 1, 2, 3, 5 x 10^k within the range.
+      const double lo = num(figure["y_range"][0]), hi = num(figure["y_range"][1]);
+      std::string tics;
+      for (int k = static_cast<int>(std::floor(std::log10(lo))); k <= static_cast<int>(std::ceil(std::log10(hi))); ++k) {
+        for (const double d : {1.0, 2.0, 3.0, 5.0}) {
+          const double v = d * std::pow(10.0, k);
+          if (v >= lo && v <= hi) tics += fmt::format("{}{:.3g}", tics.empty() ? "" : ", ", v);
+        }
+      }
+      if (!tics.empty()) s += "set ytics (" + tics + ")\n";
+    }
+  }
   s += "set grid xtics ytics mxtics mytics lc rgb '#d8d8d8' lw 1, lc rgb '#eeeeee' lw 1\n";
-  s += "set border lc rgb '#444444'\nset key inside left bottom noenhanced box lc rgb '#bbbbbb' "
-       "opaque width 1 spacing 1.1 font ',11'\nset bars small\n";
+  const std::string legend = figure.value("legend", std::string());  // optional key
+  s += std::string("set border lc rgb '#444444'\nset key ") +
+       (legend == "outside" ? "outside right top" : legend == "below" ? "below horizontal" : "inside left bottom") +
+       " noenhanced box lc rgb '#bbbbbb' opaque width 1 spacing 1.1 font ',11'\nset bars small\n";
   if (figure.contains("x_range")) {
     s += fmt::format("set xrange [{:.10g}:{:.10g}]\n", num(figure["x_range"][0]), num(figure["x_range"][1]));
   }
@@ -358,9 +411,32 @@ std::string gnuplot_script(const json& figure, const std::string& svg_path,
     s += block + " << EOD\n";
     const auto& x = series["x"];
     const auto& y = series["y"];
+    const std::string style = str(series["style"]);
+    if (style == "heatmap") {
+      // Each cell a filled box coloured by z on a log colour axis.
+      const auto& z = series["z"];
+      for (std::size_t i = 0; i < z.size(); ++i) {
+        s += fmt::format("{:.10g} {:.10g} {:.10g} {:.10g} {:.10g} {:.10g} {:.10g}\n", num(x[i]), num(y[i]),
+                         num(series["x_low"][i]), num(series["x_high"][i]), num(series["y_low"][i]),
+                         num(series["y_high"][i]), num(z[i]));
+      }
+      s += "EOD\n";
+      std::string palette;
+      for (const auto& [f, c] : kHeatScale) palette += fmt::format("{}{:g} '{}'", palette.empty() ? "" : ", ", f, c);
+      s += "set palette defined (" + palette + ")\nset logscale cb\nset format cb '%.2g'\n";
+      s += fmt::format("set cbrange [{:.10g}:{:.10g}]\n", std::pow(10.0, num(series["z_log_range"][0])),
+                       std::pow(10.0, num(series["z_log_range"][1])));
+      s += "set cblabel " + quote_gp(str(series["z_label"])) + " noenhanced\n";
+      plots += (plots.empty() ? "plot " : ", \\\n     ") +
+               fmt::format("{} using 1:2:3:4:5:6:7 with boxxyerror fs solid 1.0 noborder fc palette notitle", block);
+      continue;
+    }
     const bool bars = series.contains("y_low");
     for (std::size_t i = 0; i < x.size(); ++i) {
-      if (!y[i].is_number()) continue;
+      if (!y[i].is_number()) {
+        if (style != "points") s += "\n";  // a null breaks a line into pieces
+        continue;
+      }
       if (bars) {
         const double yi = num(y[i]);
         const double lo = series["y_low"][i].is_number() ? num(series["y_low"][i]) : yi;
@@ -371,21 +447,23 @@ std::string gnuplot_script(const json& figure, const std::string& svg_path,
       }
     }
     s += "EOD\n";
-    const std::string color = palette_color(series["color"].get<int>());
-    const std::string style = str(series["style"]);
+    const std::string color = series_color(series);
     // A fitted line grouped with its channel's points shares their key entry.
     const std::string title = series.contains("group") && style != "points"
                                   ? std::string("notitle")
                                   : "title " + quote_gp(str(series["name"]));
     std::string p;
     if (style == "points") {
-      p = fmt::format("{} using 1:2:3:4 with yerrorbars pt 7 ps 0.7 lw 1.2 lc rgb '{}' {}",
-                      block, color, title);
-      if (!bars) p = fmt::format("{} using 1:2 with points pt 7 ps 0.7 lc rgb '{}' {}", block,
-                                 color, title);
+      const int pt = series.value("symbol", std::string()) == "x" ? 2 : 7;
+      const double ps = 0.1 * series.value("size", 7.0);
+      p = fmt::format("{} using 1:2:3:4 with yerrorbars pt {} ps {:g} lw 1.2 lc rgb '{}' {}",
+                      block, pt, ps, color, title);
+      if (!bars) p = fmt::format("{} using 1:2 with points pt {} ps {:g} lc rgb '{}' {}", block,
+                                 pt, ps, color, title);
     } else {
       const char* dash = style == "dashed" ? "dt 2" : style == "limit" ? "dt 3" : "dt 1";
-      const double width = style == "line" ? 2.2 : 1.6;
+      const double width = series.contains("width") ? series["width"].get<double>() * (2.2 / 2.4)
+                           : style == "line" ? 2.2 : 1.6;
       p = fmt::format("{} using 1:2 with lines lw {} {} lc rgb '{}' {}", block, width, dash,
                       color, title);
     }
@@ -457,14 +535,41 @@ constexpr const char* kScript = R"JS(
   console.error = function () { note(Array.from(arguments).join(' ')); origError.apply(console, arguments); };
   document.body.setAttribute('data-errors', '0');
   const report = JSON.parse(document.getElementById('report-data').textContent);
-  function trace(s, unit) {
-    const c = PALETTE[s.color % PALETTE.length];
+  function colorOf(s) { return typeof s.color === 'string' ? s.color : PALETTE[s.color % PALETTE.length]; }
+  // The heat maps' colour scale (viridis stops; gnuplot_script defines the same palette).
+  const SCALE = %SCALE%;
+  function scaleColor(f) {
+    f = Math.min(1, Math.max(0, f));
+    for (let i = 1; i < SCALE.length; ++i) {
+      if (f <= SCALE[i][0]) {
+        const a = SCALE[i - 1], b = SCALE[i], u = (f - a[0]) / (b[0] - a[0]);
+        const pa = parseInt(a[1].slice(1), 16), pb = parseInt(b[1].slice(1), 16);
+        const mix = function (shift) { return Math.round(((pa >> shift) & 255) * (1 - u) + ((pb >> shift) & 255) * u); };
+        return 'rgb(' + mix(16) + ',' + mix(8) + ',' + mix(0) + ')';
+      }
+    }
+    return SCALE[SCALE.length - 1][1];
+  }
+  function trace(s, unit, fig) {
+    const c = colorOf(s);
+    const xname = fig.x_hover || 'τ', xunit = fig.x_hover_unit === undefined ? ' s' : fig.x_hover_unit;
     const t = { x: s.x, y: s.y, name: s.name, type: 'scatter', legendgroup: s.group || s.name,
                 showlegend: !s.group || s.style === 'points',
-                hovertemplate: 'τ = %{x:.4g} s<br>%{y:.4g} ' + unit + '<extra>' + s.name + '</extra>' };
-    if (s.style === 'points') {
+                hovertemplate: (s.text ? '%{text}<br>' : '') + xname + ' = %{x:.4g}' + xunit + '<br>%{y:.4g} ' + unit + '<extra>' + s.name + '</extra>' };
+    if (s.text) t.text = s.text;
+    if (s.style === 'heatmap') {
+      // Cells are layout shapes (heatmap(): the basic Plotly bundle has no heatmap trace);
+      // this trace gives each cell's hover and the colour bar.
+      const logs = s.z.map(function (z) { return Math.log10(z); });
       t.mode = 'markers';
-      t.marker = { color: c, size: 7 };
+      t.marker = { color: logs, colorscale: SCALE, cmin: s.z_log_range[0], cmax: s.z_log_range[1], size: 5, opacity: 0.01,
+                   colorbar: { title: { text: 'log10 ' + s.z_label, side: 'right' }, thickness: 14 } };
+      t.hovertemplate = xname + ' = %{x:.4g}' + xunit + '<br>τ = %{y:.4g} s<br>' + s.z_label + ' = %{text}<extra></extra>';
+      t.text = s.z.map(function (z) { return z.toPrecision(4); });
+      t.showlegend = false;
+    } else if (s.style === 'points') {
+      t.mode = 'markers';
+      t.marker = { color: c, size: s.size || 7, symbol: s.symbol || 'circle' };
       if (s.y_low) {
         t.error_y = { type: 'data', symmetric: false, color: c, thickness: 1.3, width: 3,
                       array: s.y_high.map(function (h, i) { return h == null ? 0 : h - s.y[i]; }),
@@ -472,14 +577,30 @@ constexpr const char* kScript = R"JS(
       }
     } else {
       t.mode = 'lines';
-      t.line = { color: c, width: s.style === 'line' ? 2.4 : 1.6,
+      t.line = { color: c, width: s.width || (s.style === 'line' ? 2.4 : 1.6),
                  dash: s.style === 'dashed' ? 'dash' : s.style === 'limit' ? 'dot' : 'solid' };
     }
     return t;
   }
+  function heatmap(s, fig) {
+    // Shape corners are data values on every axis type (Plotly 2: unlike annotations, no log10
+    // on log axes).
+    const shapes = [];
+    const lx = function (v) { return v; };
+    const ly = function (v) { return v; };
+    const span = s.z_log_range[1] - s.z_log_range[0] || 1;
+    s.z.forEach(function (z, i) {
+      shapes.push({ type: 'rect', layer: 'below', line: { width: 0 }, xref: 'x', yref: 'y',
+                    x0: lx(s.x_low[i]), x1: lx(s.x_high[i]), y0: ly(s.y_low[i]), y1: ly(s.y_high[i]),
+                    fillcolor: scaleColor((Math.log10(z) - s.z_log_range[0]) / span) });
+    });
+    return shapes;
+  }
   function axis(label, log, range) {
     const r = range ? (log ? range.map(Math.log10) : range) : undefined;
-    return { range: r, autorange: r ? false : true, title: { text: label }, type: log ? 'log' : 'linear', exponentformat: 'power', dtick: log ? 1 : undefined,
+    // Decade ticks unless the range is narrower than two decades (a fleet's spread).
+    const decades = log && !(r && r[1] - r[0] < 2);
+    return { range: r, autorange: r ? false : true, title: { text: label }, type: log ? 'log' : 'linear', exponentformat: 'power', dtick: decades ? 1 : undefined,
              showgrid: true, gridcolor: '#e8eaee', zeroline: false, linecolor: '#888', mirror: true, ticks: 'outside' };
   }
   let drawn = 0;
@@ -505,11 +626,26 @@ constexpr const char* kScript = R"JS(
                      legend: hero ? { x: 0.01, y: 0.01, xanchor: 'left', yanchor: 'bottom', bgcolor: 'rgba(255,255,255,0.85)', bordercolor: '#ddd', borderwidth: 1, font: { size: 11 } }
                                  : { orientation: 'h', x: 0, y: -0.2, yanchor: 'top', font: { size: 11 } },
                      font: { family: 'system-ui, -apple-system, Segoe UI, Roboto, DejaVu Sans, sans-serif' } };
-    const traces = fig.series.map(function (s) { return trace(s, unit); });
+    const traces = fig.series.map(function (s) { return trace(s, unit, fig); });
+    fig.series.forEach(function (s) { if (s.style === 'heatmap') layout.shapes = (layout.shapes || []).concat(heatmap(s, fig)); });
     try {
       Plotly.newPlot(div, traces, layout, { responsive: true, displaylogo: false, displayModeBar: 'hover' }).then(function () {
         div.setAttribute('data-rendered-points', String(div.querySelectorAll('.scatterlayer .point').length));
         div.setAttribute('data-rendered-traces', String(div.querySelectorAll('.scatterlayer .trace').length));
+        // Heat-map cells drawn, and how many fall outside the axes' ranges (misplaced).
+        const shapes = (div._fullLayout && div._fullLayout.shapes) || [];
+        const inside = function (ax, a, b) {
+          const r = ax.type === 'log' ? ax.range.map(function (v) { return Math.pow(10, v); }) : ax.range;
+          const lo = Math.min(r[0], r[1]), hi = Math.max(r[0], r[1]), eps = 1e-9 * (hi - lo);
+          return a >= lo - eps && b <= hi + eps && a < b;
+        };
+        let outside = 0;
+        shapes.forEach(function (sh) {
+          if (!inside(div._fullLayout.xaxis, Math.min(sh.x0, sh.x1), Math.max(sh.x0, sh.x1)) ||
+              !inside(div._fullLayout.yaxis, Math.min(sh.y0, sh.y1), Math.max(sh.y0, sh.y1))) outside += 1;
+        });
+        div.setAttribute('data-rendered-shapes', String(div.querySelectorAll('.shapelayer path').length));
+        div.setAttribute('data-shapes-outside', String(outside));
         drawn += 1;
         document.body.setAttribute('data-figures-drawn', String(drawn));
       }).catch(note);
@@ -542,13 +678,66 @@ std::string embed_json(const json& doc) {
 
 }  // namespace
 
-std::string render_html(const json& doc, const std::string& plotly_js) {
-  const bool interactive = !plotly_js.empty();
+std::string html_escape_text(const std::string& s) { return html_escape(s); }
+
+std::string html_page_head(const std::string& title, const std::string& plotly_js) {
   std::string h = "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n";
   h += "<meta name=\"viewport\" content=\"width=device-width, initial-scale=1\">\n";
-  h += "<title>" + html_escape(str(doc["title"])) + "</title>\n<style>" + kCss + "</style>\n";
-  if (interactive) h += "<script>" + plotly_js + "</script>\n";
-  h += "</head>\n<body>\n<header><h1>" + html_escape(str(doc["title"])) + "</h1>";
+  h += "<title>" + html_escape(title) + "</title>\n<style>" + kCss + "</style>\n";
+  if (!plotly_js.empty()) h += "<script>" + plotly_js + "</script>\n";
+  h += "</head>\n<body>\n<header><h1>" + html_escape(title) + "</h1>";
+  return h;
+}
+
+std::string html_figures(const json& figures, bool interactive) {
+  std::string h = "<div class=\"figs\" style=\"margin-top:18px\">\n";
+  int i = 0;
+  for (const auto& f : figures) {
+    const std::string stem = file_stem(str(f["id"]));
+    const bool hero = (i == 0 && str(f["id"]).rfind("adev_all", 0) == 0) || f.value("wide", false);
+    h += "<figure id=\"figure-" + html_escape(stem) + "\"" + (hero ? " class=\"hero\"" : "") + ">";
+    if (interactive) {
+      h += fmt::format("<div class=\"plot\" id=\"fig-{}\"></div>", i);
+    } else {
+      h += "<img src=\"figures/" + stem + ".svg\" alt=\"" + html_escape(str(f["title"])) + "\">";
+    }
+    h += "<figcaption>" + html_escape(str(f["caption"])) + " <a href=\"figures/" + stem +
+         ".svg\">SVG</a> · <a href=\"figures/" + stem + ".png\">PNG</a></figcaption></figure>\n";
+    ++i;
+  }
+  h += "</div>\n";
+  return h;
+}
+
+std::string html_page_tail(const json& doc, bool interactive) {
+  std::string h = "</main>\n";
+  if (interactive) {
+    h += "<script type=\"application/json\" id=\"report-data\">" + embed_json(doc) + "</script>\n";
+    std::string palette = "[";
+    for (int c = 0; c < 8; ++c) palette += std::string(c ? "," : "") + "'" + palette_color(c) + "'";
+    palette += "]";
+    std::string script = kScript;
+    script.replace(script.find("%PALETTE%"), 9, palette);
+    script.replace(script.find("%SCALE%"), 7, heat_scale_js());
+    h += "<script>" + script + "</script>\n";
+  }
+  h += "</body>\n</html>\n";
+  return h;
+}
+
+std::string markdown_figures(const json& figures) {
+  std::string md = "\n## Figures\n\n";
+  for (const auto& f : figures) {
+    const std::string stem = file_stem(str(f["id"]));
+    md += fmt::format("### {}\n\n![{}](figures/{}.svg)\n\n{} ([PNG](figures/{}.png))\n\n",
+                      str(f["title"]), str(f["title"]), stem, str(f["caption"]), stem);
+  }
+  return md;
+}
+
+std::string render_html(const json& doc, const std::string& plotly_js) {
+  const bool interactive = !plotly_js.empty();
+  std::string h = html_page_head(str(doc["title"]), plotly_js);
   const auto& channels = doc["channels"];
   double rate = 0, duration = 0;
   std::size_t ok = 0;
@@ -580,22 +769,7 @@ std::string render_html(const json& doc, const std::string& plotly_js) {
   }
   h += "</div>\n";
   // Figures.
-  h += "<div class=\"figs\" style=\"margin-top:18px\">\n";
-  int i = 0;
-  for (const auto& f : doc["figures"]) {
-    const std::string stem = file_stem(str(f["id"]));
-    const bool hero = i == 0 && str(f["id"]).rfind("adev_all", 0) == 0;
-    h += "<figure id=\"figure-" + html_escape(stem) + "\"" + (hero ? " class=\"hero\"" : "") + ">";
-    if (interactive) {
-      h += fmt::format("<div class=\"plot\" id=\"fig-{}\"></div>", i);
-    } else {
-      h += "<img src=\"figures/" + stem + ".svg\" alt=\"" + html_escape(str(f["title"])) + "\">";
-    }
-    h += "<figcaption>" + html_escape(str(f["caption"])) + " <a href=\"figures/" + stem +
-         ".svg\">SVG</a> · <a href=\"figures/" + stem + ".png\">PNG</a></figcaption></figure>\n";
-    ++i;
-  }
-  h += "</div>\n";
+  h += html_figures(doc["figures"], interactive);
   // Noise-model table.
   const auto terms = shown_terms(doc);
   h += fmt::format("<h2>Noise model</h2>\n<p class=\"soft\">Coefficients of the paper's eq. 5 "
@@ -693,6 +867,14 @@ std::string render_html(const json& doc, const std::string& plotly_js) {
     }
     h += "</table>\n";
   }
+  if (const auto davars = davar_lines(doc); !davars.empty()) {
+    h += "<h2>Stationarity (dynamic Allan variance)</h2>\n<ul>";
+    for (const auto& [name, text] : davars) h += "<li>" + html_escape(text) + "</li>";
+    h += "</ul>\n<p class=\"soft\">A window is flagged when its Allan variance at a tau lies outside "
+         "the chi-squared band around the median of all windows (Bonferroni over windows and taus: "
+         "a stationary record is called non-stationary with probability &lt; 0.001). The heat map "
+         "shows every window.</p>\n";
+  }
   if (!doc["redundant"].is_null()) {
     const auto& r = doc["redundant"];
     h += "<h2>Redundant unit: " + html_escape(str(r["geometry"])) + "</h2>\n";
@@ -738,17 +920,7 @@ std::string render_html(const json& doc, const std::string& plotly_js) {
            std::string(any_spec ? ", spec_comparison.csv" : "") +
            "; every number of this page is in report.json.</li>";
   h += "<h2>Notes</h2>\n<ul class=\"notes\">" + notes + "</ul>\n";
-  h += "</main>\n";
-  if (interactive) {
-    h += "<script type=\"application/json\" id=\"report-data\">" + embed_json(doc) + "</script>\n";
-    std::string palette = "[";
-    for (int c = 0; c < 8; ++c) palette += std::string(c ? "," : "") + "'" + palette_color(c) + "'";
-    palette += "]";
-    std::string script = kScript;
-    script.replace(script.find("%PALETTE%"), 9, palette);
-    h += "<script>" + script + "</script>\n";
-  }
-  h += "</body>\n</html>\n";
+  h += html_page_tail(doc, interactive);
   return h;
 }
 

@@ -215,6 +215,47 @@ nlohmann::json kalibr_json(const Study& study) {
 }
 
 
+// The dynamic Allan variance in the report: deviations (not variances) in the record's unit,
+// null where a window holds too few terms at a tau.
+nlohmann::json davar_json(const Record& record, const preprocess::DavarResult& d) {
+  const double f = record.rate_unit.to_si;
+  const auto dev = [f](double avar) {
+    return std::isfinite(avar) && avar > 0.0 ? nlohmann::json(std::sqrt(avar) / f) : nlohmann::json(nullptr);
+  };
+  nlohmann::json adev = nlohmann::json::array(), flagged = nlohmann::json::array();
+  std::size_t n_flagged = 0;
+  for (std::size_t w = 0; w < d.avar.size(); ++w) {
+    nlohmann::json row = nlohmann::json::array(), flags = nlohmann::json::array();
+    for (std::size_t j = 0; j < d.avar[w].size(); ++j) {
+      row.push_back(dev(d.avar[w][j]));
+      flags.push_back(static_cast<bool>(d.flagged[w][j]));
+    }
+    adev.push_back(std::move(row));
+    flagged.push_back(std::move(flags));
+    n_flagged += d.window_flagged[w] ? 1 : 0;
+  }
+  nlohmann::json reference = nlohmann::json::array();
+  for (const double v : d.reference_avar) reference.push_back(dev(v));
+  return {{"unit", unit_label(record)},
+          {"window_s", d.window_s},
+          {"step_s", d.step_s},
+          {"window_start_s", d.window_start_s},
+          {"tau_s", d.tau_s},
+          {"adev", std::move(adev)},
+          {"reference_adev", std::move(reference)},
+          {"flagged", std::move(flagged)},
+          {"window_flagged", std::vector<bool>(d.window_flagged.begin(), d.window_flagged.end())},
+          {"n_windows", d.avar.size()},
+          {"n_flagged_windows", n_flagged},
+          {"stationary", d.stationary},
+          {"change_times_s", d.change_times_s},
+          {"suggested_skip_s", d.suggested_skip_s},
+          {"rule", "a window is flagged at a tau when its Allan variance over the median of all "
+                   "windows lies outside the chi-squared band of its degrees of freedom "
+                   "(Bonferroni over windows and taus: a stationary record is called "
+                   "non-stationary with probability < 0.001); stationary: no window flagged"}};
+}
+
 nav::NavOptions nav_options(const StudyOptions& options, const NoiseCoefficients& c) {
   nav::NavOptions o;
   for (auto& axis : o.axes) axis.coefficients = c;  // the same gyro on every axis (eq. 6)
@@ -394,7 +435,7 @@ Study run_study(std::vector<Record> records, const StudyOptions& options,
     if (ch.fit && ch.fit->coefficients.quantity == Quantity::angular_rate && ch.record.unit_given) {
       report("navigation error", 0.8);
       try {
-        ch.nav = nav::report_json(nav::navigation_error(nav_options(options, ch.fit->coefficients)));
+        ch.nav = navigation_json(ch.fit->coefficients, options);
       } catch (const InputError& e) {
         ch.warnings.push_back(std::string("navigation error not computed: ") + e.what());
       }
@@ -416,6 +457,10 @@ Study run_study(std::vector<Record> records, const StudyOptions& options,
   }
   if (progress) progress("done", 1.0);
   return study;
+}
+
+nlohmann::json navigation_json(const NoiseCoefficients& c, const StudyOptions& options) {
+  return nav::report_json(nav::navigation_error(nav_options(options, c)));
 }
 
 nlohmann::json study_json(const Study& study) {
@@ -470,6 +515,7 @@ nlohmann::json study_json(const Study& study) {
     }
     c["spec_comparison"] = ch.comparison ? comparison_json(*ch.comparison) : nlohmann::json(nullptr);
     c["nav"] = ch.nav;
+    c["davar"] = rec.davar ? davar_json(rec, *rec.davar) : nlohmann::json(nullptr);
     c["warnings"] = ch.warnings;
     channels.push_back(std::move(c));
   }

@@ -83,8 +83,9 @@ void check_report_dir(const std::string& dir, bool force) {
   }
 }
 
-WrittenReport write_report(const nlohmann::json& doc, const std::string& dir,
-                           const WriteOptions& options) {
+WrittenReport write_report_files(std::map<std::string, std::string> texts, const HtmlRenderer& html,
+                                 const nlohmann::json& figures_doc, const std::string& dir,
+                                 const WriteOptions& options) {
   WrittenReport written;
   written.dir = dir;
   const fs::path root(dir);
@@ -101,13 +102,6 @@ WrittenReport write_report(const nlohmann::json& doc, const std::string& dir,
     throw InputError(dir + ": the directory is not writable; fix: choose a writable -o DIR or "
                      "change its permissions");
   }
-
-  // Everything to write, by path relative to DIR.
-  std::map<std::string, std::string> texts;
-  texts["report.json"] = doc.dump(1) + "\n";
-  texts["report.md"] = render_markdown(doc);
-  for (auto& [name, text] : render_csv_tables(doc)) texts[name] = std::move(text);
-  if (doc["kalibr"]["written"].get<bool>()) texts["imu.yaml"] = doc["kalibr"]["text"];
   std::string plotly_path = options.plotly_js_path.empty() ? find_plotly_js()
                                                            : options.plotly_js_path;
   std::string plotly;
@@ -123,11 +117,11 @@ WrittenReport write_report(const nlohmann::json& doc, const std::string& dir,
         "repository's web/ folder, or set IMUNOISE_PLOTLY_JS)");
   }
   written.interactive = !plotly.empty();
-  texts["report.html"] = render_html(doc, plotly);
+  texts["report.html"] = html(plotly);
   std::vector<std::string> figure_files;
   const bool figures = !options.gnuplot.empty();
   if (figures) {
-    for (const auto& f : doc["figures"]) {
+    for (const auto& f : figures_doc) {
       const std::string stem = file_stem(f["id"].get<std::string>());
       figure_files.push_back("figures/" + stem + ".svg");
       figure_files.push_back("figures/" + stem + ".png");
@@ -162,7 +156,7 @@ WrittenReport write_report(const nlohmann::json& doc, const std::string& dir,
   for (const auto& [name, text] : texts) write_file(staging.path / name, text);
   if (figures) {
     std::string script;
-    for (const auto& f : doc["figures"]) {
+    for (const auto& f : figures_doc) {
       const std::string stem = file_stem(f["id"].get<std::string>());
       script += "reset\n" + gnuplot_script(f, (staging.path / "figures" / (stem + ".svg")).string(),
                                            (staging.path / "figures" / (stem + ".png")).string());
@@ -194,12 +188,25 @@ WrittenReport write_report(const nlohmann::json& doc, const std::string& dir,
     if (name != "report.html" && name != "report.json") order.push_back(name);
   }
   order.push_back("report.html");
-  order.push_back("report.json");
+  if (texts.count("report.json") != 0) order.push_back("report.json");
   for (const auto& name : order) {
     fs::rename(staging.path / name, root / name);
     written.files.push_back(name);
   }
   return written;
+}
+
+WrittenReport write_report(const nlohmann::json& doc, const std::string& dir,
+                           const WriteOptions& options) {
+  // Everything to write, by path relative to DIR.
+  std::map<std::string, std::string> texts;
+  texts["report.json"] = doc.dump(1) + "\n";
+  texts["report.md"] = render_markdown(doc);
+  for (auto& [name, text] : render_csv_tables(doc)) texts[name] = std::move(text);
+  if (doc["kalibr"]["written"].get<bool>()) texts["imu.yaml"] = doc["kalibr"]["text"];
+  return write_report_files(
+      std::move(texts), [&doc](const std::string& plotly) { return render_html(doc, plotly); },
+      doc["figures"], dir, options);
 }
 
 }  // namespace imunoise::study

@@ -158,3 +158,49 @@ TEST(CliDemo, PrintsTheSummaryAndWritesTheReport) {
 
 }  // namespace
 }  // namespace imunoise::test
+
+namespace imunoise::test {
+namespace {
+
+// analyze --davar: each channel's dynamic Allan variance in report.json, its heat map as a
+// figure file and its verdict in report.md. gy's noise triples at 60 s of 200 s: not
+// stationary, the first change found within half a window (10 s) of 60 s and every window
+// before it flagged; gx is white throughout.
+TEST(CliAnalyze, DavarHeatMapAndVerdictInTheReport) {
+  TempDir dir;
+  std::mt19937_64 rng(7);
+  std::normal_distribution<double> normal(0.0, 0.01);
+  std::string text = "t,gx,gy\n";
+  for (std::size_t i = 0; i < 20000; ++i) {
+    const double t = static_cast<double>(i) / 100.0;
+    text += std::to_string(t) + "," + std::to_string(normal(rng)) + "," +
+            std::to_string(normal(rng) * (t >= 60.0 ? 3.0 : 1.0)) + "\n";
+  }
+  const auto file = dir.write("imu.csv", text);
+  const auto out = dir.file("report");
+  const auto r = run_cli({"analyze", file, "--time-column", "t", "--units", "deg/s", "--davar",
+                          "--davar-window", "20", "-o", out, "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(slurp(out + "/report.json"));
+  const auto& gx = doc["channels"][0]["davar"];
+  const auto& gy = doc["channels"][1]["davar"];
+  ASSERT_TRUE(gx.is_object() && gy.is_object());
+  EXPECT_EQ(gx["window_s"], 20.0);
+  EXPECT_TRUE(gx["stationary"].get<bool>());
+  EXPECT_FALSE(gy["stationary"].get<bool>());
+  // The first change is the step; every window wholly before it is flagged.
+  ASSERT_GE(gy["change_times_s"].size(), 1u);
+  EXPECT_NEAR(gy["change_times_s"][0].get<double>(), 60.0, 10.0);
+  for (std::size_t w = 0; w < gy["window_start_s"].size(); ++w) {
+    if (gy["window_start_s"][w].get<double>() + 20.0 <= 60.0) EXPECT_TRUE(gy["window_flagged"][w].get<bool>()) << w;
+  }
+  EXPECT_TRUE(std::filesystem::exists(out + "/figures/davar_gy.svg"));
+  EXPECT_TRUE(std::filesystem::exists(out + "/figures/davar_gx.png"));
+  const auto md = slurp(out + "/report.md");
+  EXPECT_NE(md.find("- gy: "), std::string::npos) << md;
+  EXPECT_NE(md.find("NOT stationary"), std::string::npos);
+  EXPECT_NE(md.find("changes near t = "), std::string::npos);
+}
+
+}  // namespace
+}  // namespace imunoise::test

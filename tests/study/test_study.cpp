@@ -8,12 +8,16 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <span>
 #include <sstream>
 
 #include "imunoise/error.hpp"
 #include "imunoise/fit/report.hpp"
 #include "imunoise/nav/report.hpp"
+#include "imunoise/phase.hpp"
+#include "imunoise/preprocess/dynamic_allan.hpp"
+#include "imunoise/units.hpp"
 #include "imunoise/redundant/fusion.hpp"
 #include "imunoise/redundant/report.hpp"
 #include "imunoise/spec/report.hpp"
@@ -341,6 +345,94 @@ TEST(Study, KalibrFileCombinesTheAxesByTheStatedRule) {
   ASSERT_NE(at, std::string::npos) << text;
   EXPECT_DOUBLE_EQ(std::stod(text.substr(at + 26)), n);
   EXPECT_NE(text.find("\naccelerometer_noise_density: "), std::string::npos) << text;
+}
+
+}  // namespace
+}  // namespace imunoise
+
+namespace imunoise {
+namespace {
+
+// A gyro at 100 Hz, 1200 s, white rate noise of 0.01 deg/s whose level grows by `step` at
+// `step_at_s`, with its dynamic Allan variance (windows of 60 s every 10 s) as --davar makes it.
+study::Record davar_gyro(const std::string& name, double step, double step_at_s, std::uint64_t seed,
+                         preprocess::DavarResult* davar) {
+  const double rate = 100.0;
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;
+  std::vector<double> y(120'000);
+  const double deg = parse_unit("deg/s").to_si;
+  for (std::size_t i = 0; i < y.size(); ++i) {
+    y[i] = 0.01 * deg * normal(rng) * (static_cast<double>(i) / rate >= step_at_s ? step : 1.0);
+  }
+  *davar = preprocess::dynamic_allan(y, rate, {60.0, 10.0});
+  study::Record r;
+  r.name = name;
+  r.source = name + ".csv";
+  r.rate_hz = rate;
+  r.n_samples = y.size();
+  r.phase_si = phase_from_rate(y, 1.0 / rate, compensated_mean(y));
+  r.rate_unit = parse_unit("deg/s");
+  r.unit_given = true;
+  r.davar = *davar;
+  return r;
+}
+
+// The report's DAVAR: the module's result in the record's unit, its verdict, a heat map with
+// one cell per window and tau and a cross on each flagged cell, and a sentence in report.md. A
+// step in noise level (1.5x at 400 s) is found near 400 s; a stationary gyro is called so.
+TEST(StudyDavar, HeatMapAndVerdictInTheReport) {
+  preprocess::DavarResult step_davar, flat_davar;
+  std::vector<study::Record> records{davar_gyro("stepped", 1.5, 400.0, 41, &step_davar),
+                                     davar_gyro("steady", 1.0, 1e9, 42, &flat_davar)};
+  ASSERT_FALSE(step_davar.stationary);
+  ASSERT_TRUE(flat_davar.stationary);
+  const auto doc = study::study_json(study::run_study(std::move(records), {}));
+  const auto& d = doc["channels"][0]["davar"];
+  ASSERT_TRUE(d.is_object());
+  const double deg = parse_unit("deg/s").to_si;
+  std::size_t cells = 0, flagged = 0;
+  for (std::size_t w = 0; w < step_davar.avar.size(); ++w) {
+    for (std::size_t j = 0; j < step_davar.tau_s.size(); ++j) {
+      if (!(step_davar.avar[w][j] > 0.0)) continue;
+      ++cells;
+      flagged += step_davar.flagged[w][j] ? 1 : 0;
+      EXPECT_NEAR(d["adev"][w][j].get<double>(), std::sqrt(step_davar.avar[w][j]) / deg,
+                  1e-12 * d["adev"][w][j].get<double>());
+    }
+  }
+  EXPECT_GT(flagged, 0u);
+  EXPECT_FALSE(d["stationary"].get<bool>());
+  EXPECT_EQ(d["unit"], "deg/s");
+  ASSERT_EQ(d["change_times_s"].size(), 1u);
+  EXPECT_NEAR(d["change_times_s"][0].get<double>(), 400.0, 30.0);  // half a window
+  EXPECT_TRUE(doc["channels"][1]["davar"]["stationary"].get<bool>());
+  const nlohmann::json* heat = nullptr;
+  for (const auto& f : doc["figures"]) {
+    if (f["id"] == "davar_stepped") heat = &f;
+  }
+  ASSERT_NE(heat, nullptr);
+  EXPECT_EQ((*heat)["title"], "Dynamic Allan deviation of stepped: not stationary");
+  const auto& map = (*heat)["series"][0];
+  EXPECT_EQ(map["style"], "heatmap");
+  EXPECT_EQ(map["z"].size(), cells);
+  EXPECT_EQ((*heat)["series"][1]["x"].size(), flagged);
+  // The cells tile time and tau: each cell spans one step around its window's centre and an
+  // octave around its tau.
+  EXPECT_NEAR(map["x_high"][0].get<double>() - map["x_low"][0].get<double>(), 10.0, 1e-9);
+  EXPECT_NEAR(map["y_high"][0].get<double>() / map["y_low"][0].get<double>(), 2.0, 1e-12);
+  const std::string md = study::render_markdown(doc);
+  EXPECT_NE(md.find("## Stationarity (dynamic Allan variance)"), std::string::npos);
+  EXPECT_NE(md.find("stepped: " + std::to_string(step_davar.avar.size()) + " windows of 60 s every 10 s"),
+            std::string::npos) << md;
+  EXPECT_NE(md.find("NOT stationary"), std::string::npos);
+  EXPECT_NE(md.find("steady: "), std::string::npos);
+  EXPECT_NE(md.find("; stationary (0 windows outside"), std::string::npos) << md;
+  EXPECT_NE(study::render_html(doc, "").find("Stationarity (dynamic Allan variance)"), std::string::npos);
+  // gnuplot draws the heat map as coloured boxes on a log colour axis.
+  const std::string gp = study::gnuplot_script(*heat, "a.svg", "a.png");
+  EXPECT_NE(gp.find("with boxxyerror fs solid 1.0 noborder fc palette"), std::string::npos);
+  EXPECT_NE(gp.find("set logscale cb"), std::string::npos);
 }
 
 }  // namespace

@@ -20,6 +20,10 @@
 //  - "error": the file could not be analysed (the reason is the error message).
 // Pass rate: sensors whose every datasheet term was identified and passes, over the sensors
 // analysed against a datasheet.
+// Navigation (fleet --nav: each fit document has "nav" {"t_s", "latitude_deg", "models":
+// [{"model", "lat_deg", "path_m", "lon_deg"}]} or {"error"}): summary "nav" {"t_s",
+// "latitude_deg", "n_sensors", "n_not_computed", "models": [{"model", "lat_deg", "path_m",
+// "lon_deg": quantiles}]}, and per model the CSV columns nav_<model>_path_m, _lat_deg, _lon_deg.
 #include <cstddef>
 #include <span>
 #include <string>

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "imunoise/io/timestamps.hpp"
+#include "imunoise/preprocess/dynamic_allan.hpp"
 #include "imunoise/preprocess/preprocess.hpp"
 #include "imunoise/series.hpp"
 #include "imunoise/units.hpp"
@@ -29,6 +30,9 @@ struct Record {
   /// computed from (preprocess.hpp). Empty for a contiguous record.
   std::vector<preprocess::Segment> segments;
   std::vector<double> rate_si;
+  /// The dynamic Allan variance of the (preprocessed) rates, when asked for (--davar): the
+  /// report shows it as a heat map with its stationarity verdict.
+  std::optional<preprocess::DavarResult> davar;
   /// Lines printed under the record's header in text tables (recording, preprocessing).
   std::vector<std::string> table_notes;
 };

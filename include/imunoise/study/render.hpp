@@ -20,6 +20,24 @@ std::string render_markdown(const nlohmann::json& doc);
 /// (data-rendered-points on each figure, data-errors on <body>) for headless checks.
 std::string render_html(const nlohmann::json& doc, const std::string& plotly_js);
 
+/// The pieces of every report page (the study's and the fleet's, fleet/report.hpp), so that
+/// all reports share one style, one figure grid and one Plotly script:
+/// html_page_head: doctype, style, Plotly.js when given, <body> and the <header> with the
+/// title (the caller adds the subtitle, closes </header> and opens <main>);
+/// html_figures: the figure grid (interactive divs or the static SVGs; a figure with
+/// "wide": true spans the grid like the study's first overlay);
+/// html_page_tail: closes <main>, embeds `doc` (which must hold "figures") and the script that
+/// draws them, closes the page.
+std::string html_page_head(const std::string& title, const std::string& plotly_js);
+std::string html_figures(const nlohmann::json& figures, bool interactive);
+std::string html_page_tail(const nlohmann::json& doc, bool interactive);
+
+/// The "## Figures" section of report.md (links to figures/<id>.svg and .png).
+std::string markdown_figures(const nlohmann::json& figures);
+
+/// Text escaped for HTML (& < > ").
+std::string html_escape_text(const std::string& s);
+
 /// CSV tables by file name: curves.csv (every curve point of every channel),
 /// coefficients.csv (the fitted terms), spec_comparison.csv (when a datasheet was given).
 std::map<std::string, std::string> render_csv_tables(const nlohmann::json& doc);

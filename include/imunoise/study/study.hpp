@@ -88,6 +88,12 @@ Study run_study(std::vector<Record> records, const StudyOptions& options,
 /// "kalibr", "figures", "notes"}. Every number states its unit (in its key or a "unit" field).
 nlohmann::json study_json(const Study& study);
 
+/// The navigation-error document (nav/report.hpp) of a free-inertial system whose three gyros
+/// all have the noise `c` (SI), with the study's navigation options (nav_hours,
+/// nav_latitude_deg, nav_models): what run_study computes per gyro channel, for callers that
+/// study one record at a time (the fleet). InputError from the navigation module.
+nlohmann::json navigation_json(const NoiseCoefficients& c, const StudyOptions& options);
+
 /// The library version written into reports.
 std::string_view version();
 

@@ -4,6 +4,8 @@
 // is replaced without `force`; everything is written under a staging name inside DIR and
 // renamed into place at the end (report.html and report.json last), so an interrupted run
 // never leaves a report that looks complete.
+#include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -37,5 +39,15 @@ void check_report_dir(const std::string& dir, bool force);
 /// DIR cannot be created or written, or a report file exists without force (naming it).
 WrittenReport write_report(const nlohmann::json& doc, const std::string& dir,
                            const WriteOptions& options = {});
+
+/// The writer behind write_report, for every report made with this machinery (the fleet's,
+/// fleet/report.hpp): `texts` by path relative to DIR, report.html made by `html` from the
+/// Plotly.js text ("" when Plotly.js is missing: the page shows the SVGs), the figures of
+/// `figures` (figures.hpp) drawn by gnuplot into figures/. The same checks, staging and order
+/// as write_report (report.html, then report.json when in `texts`, last).
+using HtmlRenderer = std::function<std::string(const std::string& plotly_js)>;
+WrittenReport write_report_files(std::map<std::string, std::string> texts, const HtmlRenderer& html,
+                                 const nlohmann::json& figures, const std::string& dir,
+                                 const WriteOptions& options = {});
 
 }  // namespace imunoise::study
