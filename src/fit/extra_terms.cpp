@@ -357,15 +357,19 @@ int dominance(const CurveView& curve, const Vector& theta, const Params& p, int 
   return count;
 }
 
-/// Taus at which column e makes at least `share` of the model. An optional term's bump is
-/// narrow: a sinusoid's spans about two octaves, and on an octave grid it can be the largest
-/// part of the model at one tau only while making a third or more of it at its neighbours (the
-/// 0.57 Hz line of a real accelerometer: 34 %, 71 %, 24 % at 0.32, 0.64, 1.28 s).
-int shaping(const CurveView& curve, const Vector& theta, const Params& p, int e, double share) {
+/// Taus at which column e adds more than 2 standard deviations of the estimate (sigma: the
+/// candidate's weights, mismatch scatter included) to the model: where the data see it. An
+/// optional term's bump is narrow: a sinusoid's spans about two octaves, and on an octave grid
+/// it can be the largest part of the model at one tau only while clearly present at its
+/// neighbours (the 0.56 Hz line of a real accelerometer: 28 %, 70 %, 24 % of the model at
+/// 0.32, 0.64, 1.28 s, each many standard deviations).
+int seen_taus(const CurveView& curve, const Vector& theta, const Params& p, int e,
+              const Matrix& sigma) {
   int count = 0;
-  for (double tau : curve.tau_s) {
-    const double all = model_at(theta, p, tau, 0, kCols - 1);
-    if (theta(e) > 0.0 && all > 0.0 && theta(e) * column(e, tau, p) >= share * all) ++count;
+  for (std::size_t i = 0; i < curve.tau_s.size(); ++i) {
+    const auto ii = static_cast<Eigen::Index>(i);
+    const double sd = std::sqrt(std::max(0.0, sigma(ii, ii)));
+    if (theta(e) > 0.0 && theta(e) * column(e, curve.tau_s[i], p) > 2.0 * sd) ++count;
   }
   return count;
 }
@@ -390,6 +394,11 @@ class ExtraFitter {
       : curve_(curve), n_phase_(n_phase), tau0_s_(tau0_s), basis_(curve.m, n_phase, tau0_s),
         grids_(make_grids(curve, tau0_s)), mismatch_(options.model_mismatch),
         alpha_(options.mismatch_test_alpha) {
+    // The power-law fit's mismatch scatter: where it found the curve off the model, the search
+    // starts with that scatter in the weights, so that the first fits do not chase the taus
+    // of huge EDF (a Gauss-Markov term with T_c below the first tau took a real sensor's
+    // filter roll-off there instead of its slow bump).
+    if (mismatch_) initial_scatter2_ = base.summary.mismatch_scatter * base.summary.mismatch_scatter;
     for (int j = 0; j < kTermCount; ++j) {
       if (options.terms[j]) power_law_.push_back(j);
       base_theta_(j) = std::max(0.0, base.terms[j].theta);
@@ -440,9 +449,10 @@ class ExtraFitter {
     c.cols.insert(c.cols.end(), extras.begin(), extras.end());
     c.fit.theta = base_theta_;
     c.fit.p = start_;
-    c.sigma = covariance(c, false);
     const Eigen::Map<const Vector> y(curve_.avar.data(), static_cast<Eigen::Index>(curve_.avar.size()));
-    bool cap = false;
+    bool cap = initial_scatter2_ > 0.0;
+    c.scatter2 = initial_scatter2_;
+    c.sigma = with_scatter(covariance(c, cap), model_vector(curve_, c.fit.theta, c.fit.p), c.scatter2);
     // Weights from the candidate's own model (iterated); the first fit at each new weighting
     // regime is searched from every start.
     auto refit = [&](int iterations, bool multi) {
@@ -474,7 +484,14 @@ class ExtraFitter {
     if (mismatch_ && dof_of() > 0) {
       const Vector r = y - model_vector(curve_, c.fit.theta, c.fit.p);
       const double dof = static_cast<double>(dof_of());
-      if (chi2_under(r, covariance(c, false)) > chi2_quantile(1.0 - alpha_, dof)) {
+      if (chi2_under(r, covariance(c, false)) <= chi2_quantile(1.0 - alpha_, dof)) {
+        if (c.scatter2 > 0.0) {  // the candidate describes the curve: exact weights
+          c.scatter2 = 0.0;
+          cap = false;
+          c.sigma = covariance(c, false);
+          refit(2, false);
+        }
+      } else {
         cap = true;
         for (int outer = 0; outer < 8; ++outer) {
           const Vector model = model_vector(curve_, c.fit.theta, c.fit.p);
@@ -619,6 +636,7 @@ class ExtraFitter {
   Grids grids_;
   bool mismatch_ = true;
   double alpha_ = 1e-3;
+  double initial_scatter2_ = 0.0;
   std::vector<int> power_law_;
   Vector base_theta_ = Vector::Zero(kCols);
   Params start_;
@@ -635,22 +653,22 @@ void describe(const ExtraFitter& f, const Candidate& c, int e, double penalty, i
   t->penalty = penalty;
   t->dominant_taus = dominance(f.curve(), c.fit.theta, c.fit.p, e, &t->tau_min_s, &t->tau_max_s);
   const bool strong = c.delta[e] > penalty;
-  // Data sufficiency: the largest part of the model at min_dominant taus, or, for the narrow
-  // bump of an optional term, the largest at one and at least a third at min_dominant.
-  const int shaped = shaping(f.curve(), c.fit.theta, c.fit.p, e, 1.0 / 3.0);
-  const bool dominant = t->dominant_taus >= min_dominant ||
-                        (t->dominant_taus >= 1 && shaped >= min_dominant);
+  // Data sufficiency: the largest part of the model at min_dominant taus, or seen (beyond 2
+  // sd of the estimates) at min_dominant taus: a narrow bump (a sinusoid under strong white
+  // noise) can be clearly there without ever being the largest term.
+  const int shaped = seen_taus(f.curve(), c.fit.theta, c.fit.p, e, c.sigma);
+  const bool dominant = t->dominant_taus >= min_dominant || shaped >= min_dominant;
   t->selected = strong && dominant && c.fit.theta(e) > 0.0;
   if (t->selected) {
     t->verdict = strf("kept: it lowers chi^2 by %.3g (BIC price of its 2 parameters %.3g) and "
-                        "dominates the model at %d taus (a third or more of it at %d)",
+                        "dominates the model at %d taus (seen beyond 2 sd at %d)",
                         c.delta[e], penalty, t->dominant_taus, shaped);
   } else if (!strong) {
     t->verdict = strf("not identified: adding it lowers chi^2 by %.3g only, not more than the "
                         "BIC price of its 2 parameters (%.3g)",
                         c.delta[e], penalty);
   } else {
-    t->verdict = strf("not identified: it dominates the model at %d taus and makes a third of it "
+    t->verdict = strf("not identified: it dominates the model at %d taus and is seen beyond 2 sd "
                         "at %d (needs %d): it cannot be separated from the power-law terms on "
                         "this tau range",
                         t->dominant_taus, shaped, min_dominant);
@@ -836,7 +854,12 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
     tf.tau_min_s = tmin;
     tf.tau_max_s = tmax;
     coef.ci_high = std::sqrt(hi);
-    const bool sufficient = dom >= options.min_dominant_taus || tf.theta <= 0.0;
+    // The optional term takes taus from the power laws' ranges (a floor B squeezed between N
+    // and a Gauss-Markov bump dominates one tau): seen beyond 2 sd at min_dominant taus also
+    // counts, as for the optional terms.
+    const int seen = seen_taus(curve, c.fit.theta, c.fit.p, j, c.sigma);
+    const bool sufficient = dom >= options.min_dominant_taus ||
+                            seen >= options.min_dominant_taus || tf.theta <= 0.0;
     if (tf.theta > 0.0 && lo > 0.0 && sufficient) {
       coef.value = tf.estimate;
       coef.ci_low = std::sqrt(lo);
@@ -847,9 +870,9 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
       coef.ci_low = 0.0;
       coef.identified = false;
       coef.note = !sufficient
-                      ? strf("joint fit with %s: dominates the model at %d taus (needs %d); "
-                               "ci_high is an upper limit",
-                               with.c_str(), dom, options.min_dominant_taus)
+                      ? strf("joint fit with %s: dominates the model at %d taus and is seen "
+                               "beyond 2 sd at %d (needs %d); ci_high is an upper limit",
+                               with.c_str(), dom, seen, options.min_dominant_taus)
                       : "joint fit with " + with + ": zero is inside its profile interval; "
                         "ci_high is the upper limit";
     }
