@@ -2,8 +2,6 @@
 // projection over T_c / f0 around non-negative generalised least squares, BIC selection,
 // profile-likelihood intervals.
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -464,16 +462,6 @@ class ExtraFitter {
       }
     };
     refit(4, true);
-    static const bool debug = std::getenv("IMUNOISE_FIT_DEBUG") != nullptr;
-    auto dump = [&](const char* what) {
-      if (!debug) return;
-      std::fprintf(stderr, "[extra %s] cols", what);
-      for (int e : c.extras) std::fprintf(stderr, " %d", e);
-      std::fprintf(stderr, " tc %.4g f %.4g rss %.4g s2 %.4g theta", c.fit.p.tc_s, c.fit.p.f_hz, c.fit.rss, c.scatter2);
-      for (int j = 0; j < kCols; ++j) std::fprintf(stderr, " %.3g", c.fit.theta(j));
-      std::fprintf(stderr, "\n");
-    };
-    dump("exact");
     auto dof_of = [&]() {
       const std::size_t params = c.fit.set.size() + c.extras.size();
       return curve_.tau_s.size() > params ? curve_.tau_s.size() - params : 0;
@@ -511,7 +499,6 @@ class ExtraFitter {
           c.scatter2 = next;
           c.sigma = with_scatter(base, model, c.scatter2);
           refit(2, outer == 0);
-          dump("scatter");
           if (stable) break;
         }
       }
@@ -737,10 +724,6 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
     ExtraTermTest t_other, t_first;
     describe(fitter, both, other, penalty, options.min_dominant_taus, &t_other);
     describe(fitter, both, first, penalty, options.min_dominant_taus, &t_first);
-    if (std::getenv("IMUNOISE_FIT_DEBUG") != nullptr) {
-      std::fprintf(stderr, "[extra both] first %d: %s | other %d: %s\n", first, t_first.verdict.c_str(), other,
-                   t_other.verdict.c_str());
-    }
     if (t_other.selected && t_first.selected) {
       chosen = &both;
       tests[other] = t_other;
@@ -778,13 +761,6 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
       if (!failed_why[e].empty()) {
         failed = e;
         break;
-      }
-    }
-    if (std::getenv("IMUNOISE_FIT_DEBUG") != nullptr) {
-      for (int e : chosen->extras) {
-        std::fprintf(stderr, "[extra check] term %d lo %.3g hi %.3g p %.4g..%.4g bounded %d %d %d: %s\n", e,
-                     checked[e].lo, checked[e].hi, checked[e].p_lo, checked[e].p_hi, checked[e].bounded,
-                     checked[e].b_lo, checked[e].b_hi, failed_why[e].c_str());
       }
     }
     if (failed < 0) break;
