@@ -781,7 +781,14 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
     ExtraTermTest& t = e == kGM ? result.extras.gauss_markov : result.extras.sinusoid;
     t = tests[e];
     t.selected = kept;
-    if (!kept && !failed_why[e].empty()) t.verdict = failed_why[e];
+    if (!kept && !failed_why[e].empty()) {
+      t.verdict = failed_why[e];
+    } else if (!kept && tests[e].selected) {
+      // Supported only together with the other term, which then failed its interval checks.
+      t.verdict = strf("not kept: it passed only together with the %s, which failed its "
+                       "interval checks; alone: %s",
+                       long_name(e == kGM ? kSIN : kGM), single_tests[e].verdict.c_str());
+    }
     Intervals iv = checked[e];  // computed on `chosen` when kept
     if (!kept) fitter.linear_interval(c, e, q, &iv.lo, &iv.hi, &iv.bounded);
     Coefficient amp, par;
