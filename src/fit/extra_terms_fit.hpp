@@ -30,8 +30,12 @@ struct BumpStarts {
 /// When options.model_mismatch is set and chi^2 rejects a candidate model, its weights carry a
 /// mismatch scatter as in the power-law fit (Paule-Mandel, variance capped at the data).
 /// `starts` (may be null) adds starting points to the search of the two-term model.
+/// automatic (FitOptions::auto_extra_terms, the power laws already rejected): the search starts
+/// with the power-law fit's mismatch scatter in the weights, and a term (optional or power-law)
+/// also counts as supported when it adds more than 2 sd to the model at min_dominant taus.
+/// Requested terms keep the stricter rules they were validated with (docs/fit.md).
 void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
                      const FitOptions& options, FitResult& result,
-                     const BumpStarts* starts = nullptr);
+                     const BumpStarts* starts = nullptr, bool automatic = false);
 
 }  // namespace imunoise::fit::detail

@@ -325,7 +325,8 @@ void try_automatic_terms(const Curve& curve, std::size_t n_phase, double tau0_s,
   }
   FitOptions with = options;
   with.gauss_markov = with.sinusoid = true;
-  detail::fit_extra_terms({curve.m, curve.tau, curve.avar}, n_phase, tau0_s, with, trial, &starts);
+  detail::fit_extra_terms({curve.m, curve.tau, curve.avar}, n_phase, tau0_s, with, trial, &starts,
+                          true);
   std::string where;
   for (double t : concave) where += (where.empty() ? "" : ", ") + strf("%g s", t);
   const bool gm = trial.extras.gauss_markov.selected, sin = trial.extras.sinusoid.selected;
@@ -1037,7 +1038,13 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
     }
   }
   if (options.gauss_markov || options.sinusoid) {
-    detail::fit_extra_terms({curve.m, curve.tau, curve.avar}, n_phase, tau0_s, options, result);
+    // Requested: the bumps of the curve are extra starts of the two-term search.
+    double theta[kTermCount];
+    for (int j = 0; j < kTermCount; ++j) theta[j] = std::max(0.0, result.terms[j].theta);
+    detail::BumpStarts starts;
+    starts.tau_s = bump_taus(curve, n_phase, theta);
+    detail::fit_extra_terms({curve.m, curve.tau, curve.avar}, n_phase, tau0_s, options, result,
+                            &starts, false);
   } else if (options.auto_extra_terms && options.method == Method::wls &&
              summary.mismatch_scatter > 0.0 && summary.termination != Termination::degenerate_input) {
     try_automatic_terms(curve_with_bends, n_phase, tau0_s, options, bend_warning, result);
