@@ -39,7 +39,9 @@
 // sampling chain and interior bumps (concave bends: no sum of power laws has one) are left out,
 // a model-mismatch scatter is estimated when chi^2 rejects the model (weights and intervals
 // include it), and the flicker column's shape at the shortest taus carries the band-edge
-// ambiguity (FitOptions::exclude_distorted, model_mismatch, flicker_band_edge).
+// ambiguity (FitOptions::exclude_distorted, model_mismatch, flicker_band_edge). When chi^2
+// rejects the power laws and the curve has a bump, the Gauss-Markov and sinusoid terms are
+// tried automatically and kept only when the data support them (FitOptions::auto_extra_terms).
 //
 // Identification: a term is identified when zero is outside its interval. Otherwise its value
 // is 0, identified = false, ci_low = 0 and ci_high holds the upper limit, with a note saying
