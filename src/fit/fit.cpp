@@ -1039,10 +1039,10 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
   }
   if (options.gauss_markov || options.sinusoid) {
     // Requested: the bumps of the curve are extra starts of the two-term search.
-    double theta[kTermCount];
-    for (int j = 0; j < kTermCount; ++j) theta[j] = std::max(0.0, result.terms[j].theta);
+    double fitted_theta[kTermCount];
+    for (int j = 0; j < kTermCount; ++j) fitted_theta[j] = std::max(0.0, result.terms[j].theta);
     detail::BumpStarts starts;
-    starts.tau_s = bump_taus(curve, n_phase, theta);
+    starts.tau_s = bump_taus(curve, n_phase, fitted_theta);
     detail::fit_extra_terms({curve.m, curve.tau, curve.avar}, n_phase, tau0_s, options, result,
                             &starts, false);
   } else if (options.auto_extra_terms && options.method == Method::wls &&
