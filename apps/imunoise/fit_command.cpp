@@ -43,6 +43,7 @@ struct FitOptionsCli {
   double tau_max_s = 0.0;
   bool keep_short_taus = false;
   bool exact_model = false;
+  bool no_auto_terms = false;
   std::string format = "json";
   bool mpi = false;
 };
@@ -61,6 +62,7 @@ void run_fit(FitOptionsCli& options) {
   fo.tau_max_s = options.tau_max_s;
   fo.exclude_distorted = !options.keep_short_taus;
   fo.model_mismatch = !options.exact_model;
+  fo.auto_extra_terms = !options.no_auto_terms;
   fit::parse_terms(options.terms, fo);
   std::string why;
   if (!fo.IsValid(&why)) throw InputError("fit options: " + why);
@@ -163,6 +165,9 @@ void setup_fit(CLI::App& app) {
   command->add_flag("--exact-model", options->exact_model,
                     "weights and intervals assume the power-law model is exact (no "
                     "model-mismatch scatter, even when chi2 rejects the model)");
+  command->add_flag("--no-auto-terms", options->no_auto_terms,
+                    "wls: do not try the Gauss-Markov and sinusoid terms automatically when chi2 "
+                    "rejects the power-law model and the curve has a bump");
   command->add_option("--format", options->format, "json or table")->capture_default_str();
   command->add_option("-o,--output", options->output.path, "write to FILE instead of standard output");
   command->add_flag("--force", options->output.force, "replace existing output files");

@@ -56,7 +56,9 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
                      const std::string& units, const std::string& method,
                      const std::string& terms, double level, const std::string& taus,
                      const std::string& selection, bool gls, int min_dominant_taus,
-                     const std::string& spec_name, const PreprocessArgs& preprocessing) {
+                     const std::string& spec_name, double tau_min, double tau_max,
+                     bool keep_short_taus, bool exact_model, bool auto_terms,
+                     const PreprocessArgs& preprocessing) {
   if (data.ndim() != 1) throw InputError("data must be a 1-D array, got " + std::to_string(data.ndim()) + "-D");
   if (!(rate > 0) || !std::isfinite(rate)) {
     throw InputError("rate must be positive and finite (Hz), got " + std::to_string(rate));
@@ -69,6 +71,11 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
   options.use_correlation = gls;
   options.min_dominant_taus = min_dominant_taus;
   fit::parse_terms(terms, options);
+  options.tau_min_s = tau_min;
+  options.tau_max_s = tau_max;
+  options.exclude_distorted = !keep_short_taus;
+  options.model_mismatch = !exact_model;
+  options.auto_extra_terms = auto_terms;
   std::string why;
   if (!options.IsValid(&why)) throw InputError("fit options: " + why);
   const InputKind kind = parse_input_kind(data_type);
@@ -146,6 +153,7 @@ void register_fit(py::module_& m) {
   m.def("fit", [](const Array& data, const py::object& rate, const std::string& data_type, const std::string& units,
                   const std::string& method, const std::string& terms, double level, const std::string& taus,
                   const std::string& selection, bool gls, int min_dominant_taus, const std::string& spec_name,
+                  double tau_min, double tau_max, bool keep_short_taus, bool exact_model, bool auto_terms,
                   const py::object& time, const py::object& skip, const std::string& detrend,
                   const py::object& outliers, const std::string& gaps, bool davar, double davar_window,
                   const py::object& temperature, double temperature_bin) {
@@ -158,21 +166,29 @@ void register_fit(py::module_& m) {
             rate_hz = io::analyze_timing({t.data(), static_cast<std::size_t>(t.shape(0))}, "array").rate_hz;
           }
           return fit_array(data, rate_hz, data_type, units, method, terms, level, taus, selection, gls,
-                           min_dominant_taus, spec_name, pre);
+                           min_dominant_taus, spec_name, tau_min, tau_max, keep_short_taus, exact_model,
+                           auto_terms, pre);
         },
         py::arg("data"), py::arg("rate") = py::none(), py::arg("data_type") = "rate",
         py::arg("units") = "", py::arg("method") = "wls", py::arg("terms") = "Q,N,B,K",
         py::arg("level") = 0.95, py::arg("taus") = "octave", py::arg("selection") = "none",
         py::arg("gls") = false, py::arg("min_dominant_taus") = 2, py::arg("spec") = "",
+        py::arg("tau_min") = 0.0, py::arg("tau_max") = 0.0, py::arg("keep_short_taus") = false,
+        py::arg("exact_model") = false, py::arg("auto_terms") = true,
         py::arg("time") = py::none(), py::arg("skip") = py::none(), py::arg("detrend") = "none",
         py::arg("outliers") = py::none(), py::arg("gaps") = "fail", py::arg("davar") = false,
         py::arg("davar_window") = 0.0, py::arg("temperature") = py::none(), py::arg("temperature_bin") = 5.0,
         "Noise-model coefficients (Q, N, B, K, R; terms may add GM and SIN, the optional "
         "Gauss-Markov and sinusoid terms) of a record with 95% intervals and verdicts; "
         "returns the dict of `imunoise fit --format json` (data_type 'rate' by default; "
-        "spec='tg100' or a YAML spec file adds the datasheet comparison). Preprocessing keywords "
-        "as imunoise.dev: time=, skip=, detrend=, outliers=, gaps=, davar=, davar_window=, "
-        "temperature=, temperature_bin= (a fit per temperature bin under \"temperature_bins\").");
+        "spec='tg100' or a YAML spec file adds the datasheet comparison). As the command "
+        "line's switches: tau_min / tau_max (s, 0: no limit) restrict the fitted taus "
+        "(--tau-min/--tau-max); keep_short_taus keeps the shortest taus bent by the sampling "
+        "chain (--keep-short-taus); exact_model drops the model-mismatch scatter "
+        "(--exact-model); auto_terms=False does not try GM and SIN automatically when chi2 "
+        "rejects the power-law model (--no-auto-terms). Preprocessing keywords as imunoise.dev: "
+        "time=, skip=, detrend=, outliers=, gaps=, davar=, davar_window=, temperature=, "
+        "temperature_bin= (a fit per temperature bin under \"temperature_bins\").");
 }
 
 }  // namespace imunoise::python

@@ -106,3 +106,70 @@ def test_gauss_markov_term_is_found_and_reported():
     assert gm["correlation_time_s"]["value"] == pytest.approx(2.0, rel=0.25)
     assert gm["sigma"]["ci_low"] <= gm["sigma"]["value"] <= gm["sigma"]["ci_high"]
     assert not r["terms"]["SIN"]["test"]["selected"]
+
+
+# The command line's fit switches (issue 15): tau_min/tau_max, keep_short_taus, exact_model,
+# auto_terms.
+
+@pytest.fixture(scope="module")
+def filtered():
+    # A 4-sample moving average (a decimating sensor's boxcar) bends the shortest taus below the
+    # white-noise line, which no sum of power laws can do: the default fit leaves them out.
+    raw = imunoise.simulate(rate=100.0, duration=1800.0, N=N_TRUE, B=B_TRUE, seed=5)
+    return np.convolve(raw, np.full(4, 0.25), mode="valid")
+
+
+def test_tau_range_limits_the_fitted_taus(gyro):
+    r = imunoise.fit(gyro, 200.0, units="deg/s", tau_min=0.1, tau_max=200.0)
+    excluded = r["diagnostics"]["excluded_taus"]
+    assert excluded and all(e["reason"] == "tau_range" for e in excluded)
+    assert all(e["tau_s"] < 0.1 or e["tau_s"] > 200.0 for e in excluded)
+    for row in r["diagnostics"]["residuals"]:
+        assert row["used"] == (0.1 <= row["tau_s"] * (1 + 1e-9) and row["tau_s"] <= 200.0 * (1 + 1e-9))
+    # N is still there (its -1/2 slope spans the kept range) and its interval holds the truth.
+    assert r["terms"]["N"]["ci_low"] <= N_TRUE <= r["terms"]["N"]["ci_high"]
+    with pytest.raises(ValueError, match="tau_max"):
+        imunoise.fit(gyro, 200.0, tau_min=10.0, tau_max=1.0)
+    with pytest.raises(ValueError, match="tau_min"):
+        imunoise.fit(gyro, 200.0, tau_min=-1.0)
+
+
+def test_keep_short_taus_and_exact_model(filtered):
+    default = imunoise.fit(filtered, 100.0, units="deg/s")
+    cut = [e for e in default["diagnostics"]["excluded_taus"] if e["reason"] == "sampling_chain"]
+    assert cut and cut[0]["tau_s"] == pytest.approx(0.01)
+    assert any("sampling chain" in w for w in default["diagnostics"]["warnings"])
+    kept = imunoise.fit(filtered, 100.0, units="deg/s", keep_short_taus=True, exact_model=True,
+                        auto_terms=False)
+    assert kept["diagnostics"]["excluded_taus"] == []
+    assert all(row["used"] for row in kept["diagnostics"]["residuals"])
+    # The bent taus do not fit eq. 5: chi2 rejects the model. exact_model leaves the weights as
+    # they are (no scatter); the default estimates the mismatch scatter and reports it.
+    assert kept["diagnostics"]["chi2_dof"] > 4.0
+    assert kept["diagnostics"]["mismatch_scatter"] == 0.0
+    mismatch = imunoise.fit(filtered, 100.0, units="deg/s", keep_short_taus=True, auto_terms=False)
+    assert mismatch["diagnostics"]["mismatch_scatter"] > 0.0
+    # The cut brings N back (the boxcar leaves N within a few % once its taus are out).
+    assert default["terms"]["N"]["value"] == pytest.approx(N_TRUE, rel=0.05)
+    assert abs(default["terms"]["N"]["value"] / N_TRUE - 1) < abs(kept["terms"]["N"]["value"] / N_TRUE - 1)
+
+
+def test_sinusoid_is_added_automatically_only_when_allowed():
+    # White and flicker noise plus a 0.5 Hz sinusoid far above them: the power-law model is
+    # rejected and the curve has a bump at tau ~ 0.371 / f0; the default fit adds the sinusoid
+    # by itself and says so, auto_terms=False fits the power laws alone.
+    rate = 100.0
+    noise = imunoise.simulate(rate=rate, duration=1800.0, N=N_TRUE, B=B_TRUE, seed=8)
+    t = np.arange(noise.size) / rate
+    data = noise + 0.05 * np.sin(2 * np.pi * 0.5 * t + 0.3)
+    r = imunoise.fit(data, rate, units="deg/s")
+    sin = r["terms"]["SIN"]
+    assert sin["test"]["selected"] and "automatic" in sin
+    assert sin["frequency_hz"]["value"] == pytest.approx(0.5, rel=0.02)
+    assert sin["amplitude"]["ci_low"] <= 0.05 <= sin["amplitude"]["ci_high"]
+    assert any(w.startswith("added automatically") for w in r["diagnostics"]["warnings"])
+    plain = imunoise.fit(data, rate, units="deg/s", auto_terms=False)
+    assert "SIN" not in plain["terms"] and "GM" not in plain["terms"]
+    # Requested terms are fitted as before, whatever auto_terms says.
+    asked = imunoise.fit(data, rate, units="deg/s", terms="Q,N,B,K,SIN", auto_terms=False)
+    assert asked["terms"]["SIN"]["test"]["selected"] and "automatic" not in asked["terms"]["SIN"]

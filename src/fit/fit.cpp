@@ -204,6 +204,38 @@ std::vector<std::size_t> interior_bends(const Curve& c, std::size_t n_phase, std
   return bends;
 }
 
+/// Taus where the curve shows a bump, for the automatic optional terms: every concave vertex
+/// (the log-log slope of sigma^2 falling by more than 2 standard deviations of its sampling
+/// noise, rough IEEE 952 EDF; eq. 5 cannot bend that way) and the tau where the measured curve
+/// exceeds the power-law model `theta` most. `c` starts after the sampling-chain cut.
+std::vector<double> bump_taus(const Curve& c, std::size_t n_phase, const double* theta) {
+  std::vector<double> taus;
+  const std::size_t k = c.tau.size();
+  auto rel_sd = [&](std::size_t i) {
+    return std::sqrt(2.0 / std::max(1.0, ieee952_edf(c.m[i], n_phase)));
+  };
+  auto slope = [&](std::size_t i) {
+    return std::log(c.avar[i + 1] / c.avar[i]) / std::log(c.tau[i + 1] / c.tau[i]);
+  };
+  auto slope_sd = [&](std::size_t i) {
+    return std::hypot(rel_sd(i), rel_sd(i + 1)) / std::log(c.tau[i + 1] / c.tau[i]);
+  };
+  for (std::size_t i = 1; i + 1 < k; ++i) {
+    const double change = slope(i) - slope(i - 1);
+    if (change < -2.0 * std::hypot(slope_sd(i), slope_sd(i - 1))) taus.push_back(c.tau[i]);
+  }
+  double worst = 1.0, at = 0.0;
+  for (std::size_t i = 0; i < k; ++i) {
+    const double model = model_avar(theta, c.tau[i]);
+    if (model > 0.0 && c.avar[i] / model > worst) {
+      worst = c.avar[i] / model;
+      at = c.tau[i];
+    }
+  }
+  if (at > 0.0 && std::find(taus.begin(), taus.end(), at) == taus.end()) taus.push_back(at);
+  return taus;
+}
+
 /// The taus left out of the fit, as residual rows with used = false (model from the fitted
 /// terms, no sd), in tau order among the others; the measured minimum over the whole curve.
 void add_excluded_residuals(FitResult& result, const Curve& full,
@@ -266,6 +298,67 @@ void fill_common(FitResult& result, const Curve& curve, const std::vector<double
   const auto it = std::min_element(curve.avar.begin(), curve.avar.end());
   result.avar_min_measured = *it;
   result.tau_min_measured_s = curve.tau[static_cast<std::size_t>(it - curve.avar.begin())];
+}
+
+/// FitOptions::auto_extra_terms: the power-law model was rejected (mismatch scatter > 0). When
+/// the curve has a bump beyond the sampling chain, the Gauss-Markov and sinusoid terms are
+/// tried on the curve with its bends put back (multi-start from the bumps); the result with a
+/// kept term replaces the power-law one, otherwise the power-law fit stands with a warning.
+void try_automatic_terms(const Curve& curve, std::size_t n_phase, double tau0_s,
+                         const FitOptions& options, const std::string& bend_warning,
+                         FitResult& result) {
+  double theta[kTermCount];
+  for (int j = 0; j < kTermCount; ++j) theta[j] = std::max(0.0, result.terms[j].theta);
+  detail::BumpStarts starts;
+  starts.tau_s = bump_taus(curve, n_phase, theta);
+  if (starts.tau_s.empty()) return;
+  std::vector<double> concave = starts.tau_s;
+  FitResult trial = result;
+  auto& ts = trial.summary;
+  // The interior bends go back into the fit: the optional terms are there to model them.
+  ts.excluded_taus.erase(std::remove_if(ts.excluded_taus.begin(), ts.excluded_taus.end(),
+                                        [](const ExcludedTau& e) { return e.reason == "bend"; }),
+                         ts.excluded_taus.end());
+  if (!bend_warning.empty()) {
+    ts.warnings.erase(std::remove(ts.warnings.begin(), ts.warnings.end(), bend_warning),
+                      ts.warnings.end());
+  }
+  FitOptions with = options;
+  with.gauss_markov = with.sinusoid = true;
+  detail::fit_extra_terms({curve.m, curve.tau, curve.avar}, n_phase, tau0_s, with, trial, &starts,
+                          true);
+  std::string where;
+  for (double t : concave) where += (where.empty() ? "" : ", ") + strf("%g s", t);
+  const bool gm = trial.extras.gauss_markov.selected, sin = trial.extras.sinusoid.selected;
+  const double chi2_dof_power_law = result.summary.chi2_dof;
+  if (!gm && !sin) {
+    result.summary.warnings.push_back(strf(
+        "the Gauss-Markov and sinusoid terms were tried automatically (the power-law model is "
+        "rejected, chi2/dof %.3g, and the curve has bumps at %s) and not kept: Gauss-Markov: "
+        "%s; sinusoid: %s",
+        chi2_dof_power_law, where.c_str(), trial.extras.gauss_markov.verdict.c_str(),
+        trial.extras.sinusoid.verdict.c_str()));
+    return;
+  }
+  trial.extras.automatic = true;
+  std::string added;
+  if (gm && trial.coefficients.gauss_markov) {
+    added = strf("a Gauss-Markov term (T_c = %.3g s) [%s]",
+                 trial.coefficients.gauss_markov->correlation_time_s.value,
+                 trial.extras.gauss_markov.verdict.c_str());
+  }
+  if (sin && trial.coefficients.sinusoid) {
+    added += strf("%sa sinusoid (f0 = %.4g Hz) [%s]", added.empty() ? "" : " and ",
+                  trial.coefficients.sinusoid->frequency_hz.value,
+                  trial.extras.sinusoid.verdict.c_str());
+  }
+  trial.extras.reason = strf("the power-law model is rejected (chi2/dof %.3g) and the curve has "
+                             "bumps (concave bends or the largest excess over the model) at %s",
+                             chi2_dof_power_law, where.c_str());
+  ts.warnings.push_back("added automatically: " + added + ", because " + trial.extras.reason +
+                        "; no sum of power laws makes a bump. --no-auto-terms fits the power "
+                        "laws alone");
+  result = std::move(trial);
 }
 
 }  // namespace
@@ -461,6 +554,9 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
       curve = std::move(kept);
     }
   }
+  // The curve before the interior-bend cut: the automatic optional terms are fitted on it.
+  const Curve curve_with_bends = curve;
+  std::string bend_warning;
   // Not when GM or SIN is requested: those terms are there to model the bump (without this the
   // sinusoid study found no sinusoid: its bump had been left out).
   if (options.exclude_distorted && options.method != Method::slope && !options.gauss_markov &&
@@ -475,11 +571,12 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
     if (!bends.empty() && kept_count >= fitted.size() + 2) {
       std::string where;
       for (std::size_t b : bends) where += (where.empty() ? "" : ", ") + strf("%g s", curve.tau[b]);
-      summary.warnings.push_back(strf(
+      bend_warning = strf(
           "the curve bends concavely (a bump) at tau = %s: no sum of the model's power laws can; "
           "a sinusoid or a bounded correlated process (try --terms Q,N,B,K,SIN or GM); the bend "
           "and its neighbouring taus were left out of the power-law fit",
-          where.c_str()));
+          where.c_str());
+      summary.warnings.push_back(bend_warning);
       Curve kept;
       for (std::size_t i = 0; i < curve.tau.size(); ++i) {
         if (drop[i]) {
@@ -941,7 +1038,16 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
     }
   }
   if (options.gauss_markov || options.sinusoid) {
-    detail::fit_extra_terms({curve.m, curve.tau, curve.avar}, n_phase, tau0_s, options, result);
+    // Requested: the bumps of the curve are extra starts of the two-term search.
+    double fitted_theta[kTermCount];
+    for (int j = 0; j < kTermCount; ++j) fitted_theta[j] = std::max(0.0, result.terms[j].theta);
+    detail::BumpStarts starts;
+    starts.tau_s = bump_taus(curve, n_phase, fitted_theta);
+    detail::fit_extra_terms({curve.m, curve.tau, curve.avar}, n_phase, tau0_s, options, result,
+                            &starts, false);
+  } else if (options.auto_extra_terms && options.method == Method::wls &&
+             summary.mismatch_scatter > 0.0 && summary.termination != Termination::degenerate_input) {
+    try_automatic_terms(curve_with_bends, n_phase, tau0_s, options, bend_warning, result);
   }
   return result;
 }

@@ -51,16 +51,19 @@ void add_extra_terms(const RecordInfo& record, const FitOptions& options, const 
     }
     return j;
   };
-  if (options.gauss_markov) {
+  const bool automatic = r.extras.automatic;
+  if (options.gauss_markov || automatic) {
     nlohmann::json gm{{"fitted", true}, {"test", test_json(r.extras.gauss_markov, r.summary)}};
+    if (automatic) gm["automatic"] = r.extras.reason;
     if (r.coefficients.gauss_markov) {
       gm["sigma"] = rate_json(r.coefficients.gauss_markov->sigma);
       gm["correlation_time_s"] = coefficient_json(r.coefficients.gauss_markov->correlation_time_s, 1.0, "s");
     }
     terms["GM"] = std::move(gm);
   }
-  if (options.sinusoid) {
+  if (options.sinusoid || automatic) {
     nlohmann::json sin{{"fitted", true}, {"test", test_json(r.extras.sinusoid, r.summary)}};
+    if (automatic) sin["automatic"] = r.extras.reason;
     if (r.coefficients.sinusoid) {
       sin["amplitude"] = rate_json(r.coefficients.sinusoid->amplitude);
       sin["frequency_hz"] = coefficient_json(r.coefficients.sinusoid->frequency_hz, 1.0, "Hz");
@@ -139,7 +142,9 @@ nlohmann::json report_json(const RecordInfo& record, const FitOptions& options,
     }
     terms[term_name(j)] = std::move(t);
   }
-  if (options.gauss_markov || options.sinusoid) add_extra_terms(record, options, r, terms);
+  if (options.gauss_markov || options.sinusoid || r.extras.automatic) {
+    add_extra_terms(record, options, r, terms);
+  }
   const auto& s = r.summary;
   nlohmann::json residuals = nlohmann::json::array();
   for (const auto& p : r.residuals) {

@@ -186,6 +186,57 @@ TEST(FitExtraTerms, ShortWhiteNoiseRecordsRarelyKeepAnOptionalTerm) {
   EXPECT_LE(kept_sin / static_cast<double>(records), bound);
 }
 
+// Issue 15: the default fit tries the optional terms by itself when chi^2 rejects the power-law
+// model and the curve has a bump (a real accelerometer: a 0.57 Hz line and a slow Gauss-Markov
+// excess). Simulated truth: TG-100 gyro 1's N and B plus a sinusoid (0.02 deg/s, 0.5 Hz) and a
+// Gauss-Markov term (2e-3 deg/s, 30 s), 30 min at 200 Hz. Both must be added, named in a warning,
+// and their intervals must hold the truth; with auto_extra_terms off the power laws stand alone.
+TEST(FitAutoTerms, RejectedModelWithBumpsGetsThemAndOnlyThen) {
+  sim::NoiseModel model;
+  model.n_unit_sqrt_s = kN;
+  model.b_unit = kB;
+  model.sine_amplitude_unit = 0.02;
+  model.sine_frequency_hz = 0.5;
+  model.gm_sigma_unit = 2e-3;
+  model.gm_time_s = 30.0;
+  const auto n = static_cast<std::size_t>(1800.0 * kRateHz);
+  const auto phase = phase_from_rate(sim::simulate(model, kRateHz, n, 21), kTau0, 0.0);
+  const auto r = fit::fit_record(phase, kTau0);
+  ASSERT_TRUE(r.extras.automatic) << r.summary.FullReport();
+  ASSERT_TRUE(r.extras.sinusoid.selected && r.extras.gauss_markov.selected) << r.summary.FullReport();
+  const auto& sin = *r.coefficients.sinusoid;
+  const auto& gm = *r.coefficients.gauss_markov;
+  EXPECT_LE(sin.frequency_hz.ci_low, 0.5);
+  EXPECT_GE(sin.frequency_hz.ci_high, 0.5);
+  EXPECT_LE(sin.amplitude.ci_low, 0.02);
+  EXPECT_GE(sin.amplitude.ci_high, 0.02);
+  EXPECT_LE(gm.correlation_time_s.ci_low, 30.0);
+  EXPECT_GE(gm.correlation_time_s.ci_high, 30.0);
+  EXPECT_LE(gm.sigma.ci_low, 2e-3);
+  EXPECT_GE(gm.sigma.ci_high, 2e-3);
+  EXPECT_LE(r.coefficients.random_walk.ci_low, kN);
+  EXPECT_GE(r.coefficients.random_walk.ci_high, kN);
+  bool named = false;
+  for (const auto& w : r.summary.warnings) named = named || w.rfind("added automatically", 0) == 0;
+  EXPECT_TRUE(named);
+  std::printf("auto terms: f0 %.4g Hz [%.4g, %.4g], A %.3g [%.3g, %.3g], T_c %.3g s [%.3g, %.3g], "
+              "N/truth %.4f\n",
+              sin.frequency_hz.value, sin.frequency_hz.ci_low, sin.frequency_hz.ci_high,
+              sin.amplitude.value, sin.amplitude.ci_low, sin.amplitude.ci_high,
+              gm.correlation_time_s.value, gm.correlation_time_s.ci_low,
+              gm.correlation_time_s.ci_high, r.coefficients.random_walk.value / kN);
+  fit::FitOptions off;
+  off.auto_extra_terms = false;
+  const auto plain = fit::fit_record(phase, kTau0, off);
+  EXPECT_FALSE(plain.extras.automatic);
+  EXPECT_FALSE(plain.coefficients.sinusoid.has_value());
+  EXPECT_GT(plain.summary.mismatch_scatter, 0.0);  // the power laws alone are rejected
+  // A record the power laws describe is left alone (no mismatch, nothing tried).
+  const auto clean = fit::fit_record(tg100_phase(0.5, 3), kTau0);
+  EXPECT_FALSE(clean.extras.automatic);
+  EXPECT_EQ(clean.summary.mismatch_scatter, 0.0);
+}
+
 TEST(FitExtraTerms, OnlyTheWlsMethodFitsThem) {
   fit::FitOptions o;
   o.gauss_markov = true;

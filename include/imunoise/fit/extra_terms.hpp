@@ -53,6 +53,10 @@ struct ExtraTermsReport {
   ExtraTermTest sinusoid;
   /// True when a kept term changed the power-law coefficients (joint fit, profile intervals).
   bool joint = false;
+  /// True when the terms were tried without being requested (FitOptions::auto_extra_terms)
+  /// and at least one was kept; `reason` says why they were tried.
+  bool automatic = false;
+  std::string reason;
 };
 
 }  // namespace imunoise::fit

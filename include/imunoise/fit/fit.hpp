@@ -39,7 +39,9 @@
 // sampling chain and interior bumps (concave bends: no sum of power laws has one) are left out,
 // a model-mismatch scatter is estimated when chi^2 rejects the model (weights and intervals
 // include it), and the flicker column's shape at the shortest taus carries the band-edge
-// ambiguity (FitOptions::exclude_distorted, model_mismatch, flicker_band_edge).
+// ambiguity (FitOptions::exclude_distorted, model_mismatch, flicker_band_edge). When chi^2
+// rejects the power laws and the curve has a bump, the Gauss-Markov and sinusoid terms are
+// tried automatically and kept only when the data support them (FitOptions::auto_extra_terms).
 //
 // Identification: a term is identified when zero is outside its interval. Otherwise its value
 // is 0, identified = false, ci_low = 0 and ci_high holds the upper limit, with a note saying
@@ -94,6 +96,13 @@ struct FitOptions {
   /// Optional terms (wls only; extra_terms.hpp): tested, kept when the data support them.
   bool gauss_markov = false;
   bool sinusoid = false;
+  /// wls: try the Gauss-Markov and sinusoid terms automatically when neither is requested,
+  /// the chi^2 test rejects the power-law model (model_mismatch) and the curve has a bump
+  /// beyond the sampling chain (a concave bend: no sum of power laws has one). The search
+  /// starts from the bumps (T_c = tau / 1.89, f0 = 0.371 / tau) and the grids; a term is kept
+  /// by the same BIC / dominance / interval rules as a requested one, with a warning naming
+  /// it; with no term kept the power-law fit stands. false: --no-auto-terms.
+  bool auto_extra_terms = true;
   double level = 0.95;          ///< two-sided confidence level of every interval, 0 < L < 1
   int max_iterations = 8;       ///< wls re-weighting iterations (>= 1)
   /// Stop when every theta_j changes by less than this fraction of its standard deviation.
