@@ -237,7 +237,9 @@ TEST_F(GapSplit, FiveSecondGapInSixHoursAgreesWithTheGapFreeRecordForEveryEstima
       // identified on half the record at the long taus, and then its EDF may be larger.)
       EXPECT_GE(full[j].dev, p.ci_low);
       EXPECT_LE(full[j].dev, p.ci_high);
-      if (p.alpha == full[j].alpha) EXPECT_LE(p.edf, 1.01 * full[j].edf);
+      if (p.alpha == full[j].alpha) {
+        EXPECT_LE(p.edf, 1.01 * full[j].edf);
+      }
       EXPECT_GT(p.edf, 0.0);
     }
   }
