@@ -189,6 +189,7 @@ void FaultDetector::test() {
   // Isolation: the sensor whose parity column best explains p.
   std::size_t best = 0;
   double best_score = -1.0;
+  std::vector<double> scores(n_, -1.0);
   for (std::size_t i = 0; i < n_; ++i) {
     if (!active_[i]) continue;
     double dot = 0, norm = 0;
@@ -196,11 +197,17 @@ void FaultDetector::test() {
       dot += vw_[r * n_ + i] * p[r];
       norm += vw_[r * n_ + i] * vw_[r * n_ + i];
     }
-    const double score = norm > 0 ? dot * dot / norm : 0.0;
-    if (score > best_score) {
-      best_score = score;
+    scores[i] = norm > 0 ? dot * dot / norm : 0.0;
+    if (scores[i] > best_score) {
+      best_score = scores[i];
       best = i;
     }
+  }
+  // Sensors that explain the parity as well as the best (equal in exact arithmetic when their
+  // parity columns are parallel: no isolation among them).
+  std::vector<std::size_t> candidates;
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (active_[i] && scores[i] >= (1.0 - 1e-9) * best_score) candidates.push_back(i);
   }
   if (open_ && test_index - last_alarm_test_ <= R + 1 &&
       (!result_.faults.back().isolated || result_.faults.back().sensor == best)) {
@@ -248,6 +255,7 @@ void FaultDetector::test() {
   const std::size_t first_block = blocks_done_ - available + onset_block;
   FaultEvent e;
   e.sensor = best;
+  e.candidates = isolable_ ? std::vector<std::size_t>{best} : std::move(candidates);
   e.onset_s = static_cast<double>(first_block * result_.block_samples) / result_.rate_hz;
   e.detected_s = static_cast<double>(blocks_done_ * result_.block_samples) / result_.rate_hz;
   e.isolated = isolable_;

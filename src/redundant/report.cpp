@@ -113,7 +113,9 @@ std::vector<SensorModel> read_fit_files(std::span<const std::filesystem::path> p
 nlohmann::json faults_json(const DetectionResult& d) {
   nlohmann::json faults = nlohmann::json::array();
   for (const auto& f : d.faults) {
-    faults.push_back({{"sensor", f.sensor + 1}, {"t_s", f.onset_s}, {"detected_s", f.detected_s},
+    nlohmann::json candidates = nlohmann::json::array();
+    for (const std::size_t i : f.candidates) candidates.push_back(i + 1);
+    faults.push_back({{"sensor", f.sensor + 1}, {"candidates", std::move(candidates)}, {"t_s", f.onset_s}, {"detected_s", f.detected_s},
                       {"isolated", f.isolated}, {"statistic", number(f.statistic)},
                       {"threshold", number(f.threshold)}, {"max_statistic", number(f.max_statistic)},
                       {"alarms", f.alarms}});

@@ -43,8 +43,17 @@ std::string fault_summary(const json& r) {
   if (faults.empty()) return text + "; no fault detected.";
   text += "; faults:";
   for (const auto& f : faults) {
-    text += fmt::format(" sensor {} from {} s ({});", f["sensor"].dump(), g(f["t_s"], 6),
-                        f["isolated"].get<bool>() ? "isolated" : "detected, not isolable");
+    if (f["isolated"].get<bool>()) {
+      text += fmt::format(" sensor {} from {} s (isolated);", f["sensor"].dump(), g(f["t_s"], 6));
+      continue;
+    }
+    // Not isolable: the fault is on one of the candidates; naming one would accuse it falsely.
+    std::string which;
+    for (const auto& c : f.value("candidates", json::array())) {
+      which += (which.empty() ? "" : ", ") + c.dump();
+    }
+    text += fmt::format(" on one of sensors {} from {} s (detected, not isolable);", which,
+                        g(f["t_s"], 6));
   }
   return text;
 }

@@ -65,6 +65,7 @@ TEST(RedundantDetection, StepFaultOnOneOfSixConeSensorsIsDetectedAndIsolated) {
   std::printf("fault: sensor %zu onset %.3f s detected %.3f s T %.1f > %.1f\n", f.sensor + 1, f.onset_s,
               f.detected_s, f.statistic, f.threshold);
   EXPECT_EQ(f.sensor, 2u);
+  EXPECT_EQ(f.candidates, std::vector<std::size_t>{2});
   EXPECT_TRUE(f.isolated);
   EXPECT_LE(f.detected_s - onset_s, 2.0);  // within two windows
   EXPECT_NEAR(f.onset_s, onset_s, 0.1);    // one block is 0.05 s

@@ -40,6 +40,10 @@ struct FaultEvent {
   double max_statistic = 0.0;  ///< largest T while the fault lasted
   double threshold = 0.0;
   std::size_t alarms = 0;      ///< alarms merged into this fault
+  /// 0-based sensors whose parity columns explain the alarm equally well (to 1e-9): the sensor
+  /// alone when isolated; without isolation (a tetrahedron: all four), the fault is on one of
+  /// them and `sensor` is only the first among equals, set by rounding.
+  std::vector<std::size_t> candidates;
 };
 
 struct DetectionResult {
