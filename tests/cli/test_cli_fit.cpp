@@ -163,3 +163,44 @@ TEST(CliFit, BadInputGivesClearMessages) {
 
 }  // namespace
 }  // namespace imunoise
+
+namespace imunoise {
+namespace {
+
+// A gyro with a 0.5 Hz sinusoid and a 30 s Gauss-Markov term on top of N and B: the power-law
+// fit is rejected, so the default fit adds both terms by itself, says so, and their intervals
+// hold the simulated truth; --no-auto-terms keeps the power laws alone.
+TEST(CliFit, AutomaticTermsAndTheirSwitch) {
+  test::TempDir dir;
+  const std::string file = dir.file("bumpy.f64");
+  const auto sim = test::run_cli({"simulate", "--rate", "200", "--duration", "1800", "--N", "8.9e-4",
+                                  "--B", "5.9e-4", "--sine-amp", "0.02", "--sine-freq", "0.5",
+                                  "--gm-sigma", "2e-3", "--gm-tau", "30", "--units", "deg/s",
+                                  "--seed", "21", "--format", "f64", "-o", file});
+  ASSERT_EQ(sim.exit_code, 0) << sim.err;
+  const std::vector<std::string> fit{"fit", file, "--binary", "f64", "--rate", "200", "--units", "deg/s"};
+  const auto r = test::run_cli(fit);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  const auto& gm = j["terms"]["GM"];
+  const auto& sin = j["terms"]["SIN"];
+  ASSERT_TRUE(gm["automatic"].is_string()) << gm;
+  ASSERT_TRUE(sin["automatic"].is_string()) << sin;
+  EXPECT_LE(gm["correlation_time_s"]["ci_low"].get<double>(), 30.0);
+  EXPECT_GE(gm["correlation_time_s"]["ci_high"].get<double>(), 30.0);
+  EXPECT_LE(sin["amplitude"]["ci_low"].get<double>(), 0.02);
+  EXPECT_GE(sin["amplitude"]["ci_high"].get<double>(), 0.02);
+  EXPECT_NE(r.err.find("added automatically"), std::string::npos) << r.err;
+
+  auto off = fit;
+  off.push_back("--no-auto-terms");
+  const auto p = test::run_cli(off);
+  ASSERT_EQ(p.exit_code, 0) << p.err;
+  const auto k = nlohmann::json::parse(p.out);
+  EXPECT_FALSE(k["terms"].contains("GM")) << k["terms"];
+  EXPECT_FALSE(k["terms"].contains("SIN")) << k["terms"];
+  EXPECT_EQ(p.err.find("added automatically"), std::string::npos) << p.err;
+}
+
+}  // namespace
+}  // namespace imunoise
