@@ -46,6 +46,21 @@ std::string skip_text(const py::object& skip) {
 
 }  // namespace
 
+Unit rate_unit_of(const std::string& units) {
+  if (units.empty()) return Unit{"input unit", Quantity::dimensionless, 1.0};
+  Unit unit = parse_unit(units);
+  if (unit.quantity == Quantity::angle || unit.quantity == Quantity::time) {
+    throw InputError("units='" + units + "' is an angle or time unit but the samples are rates; "
+                     "give a rate unit such as 'deg/s', 'rad/s' or 'm/s^2'");
+  }
+  return unit;
+}
+
+void scale_to_si(std::vector<double>& values, const Unit& unit) {
+  if (unit.to_si == 1.0) return;
+  for (double& v : values) v *= unit.to_si;
+}
+
 bool PreprocessArgs::any() const {
   return !time.is_none() || !skip.is_none() || detrend != "none" || !outliers.is_none() || gaps != "fail" ||
          davar || !temperature.is_none();
@@ -87,18 +102,8 @@ PreparedRecord prepare_record(std::span<const double> samples, const py::object&
   }
   r.rate_hz = rate;
   r.unit_given = !units.empty();
-  if (r.unit_given) {
-    r.rate_unit = parse_unit(units);
-    if (r.rate_unit.quantity == Quantity::angle || r.rate_unit.quantity == Quantity::time) {
-      throw InputError("units='" + units + "' is an angle or time unit but the samples are rates; "
-                       "give a rate unit such as 'deg/s', 'rad/s' or 'm/s^2'");
-    }
-  } else {
-    r.rate_unit = Unit{"input unit", Quantity::dimensionless, 1.0};
-  }
-  if (const double to_si = r.rate_unit.to_si; to_si != 1.0) {
-    for (double& v : values) v *= to_si;
-  }
+  r.rate_unit = rate_unit_of(units);
+  scale_to_si(values, r.rate_unit);
   preprocess::PipelineOptions options;
   options.skip = skip_text(args.skip);
   options.detrend = args.detrend;

@@ -16,6 +16,7 @@
 #include "imunoise/fit/fit.hpp"
 #include "imunoise/preprocess/pipeline.hpp"
 #include "imunoise/study/record.hpp"
+#include "imunoise/units.hpp"
 
 namespace imunoise::python {
 
@@ -45,6 +46,13 @@ struct PreparedRecord {
 /// Python arguments, then releases it for the work).
 PreparedRecord prepare_record(std::span<const double> samples, const pybind11::object& rate, const std::string& units,
                               const PreprocessArgs& args, const std::optional<fit::FitOptions>& temperature_fit);
+
+/// The rate unit of `units` ("" : the unitless "input unit"); an angle or time unit is an
+/// InputError, since the samples are rates.
+Unit rate_unit_of(const std::string& units);
+
+/// `values` (in `unit`) converted to SI in place.
+void scale_to_si(std::vector<double>& values, const Unit& unit);
 
 /// "preprocessing", "davar", "temperature_bins" (and "timing") added to a document, as the
 /// command line adds them.

@@ -28,6 +28,8 @@
 #include "imunoise/study/write.hpp"
 #include "imunoise/units.hpp"
 
+#include "preprocessing.hpp"
+
 namespace py = pybind11;
 
 namespace imunoise::python {
@@ -108,18 +110,8 @@ study::Record make_record(std::vector<double> rate, double rate_hz, const std::s
     throw InputError(r.name + ": sample " + std::to_string(i) + " is not finite (NaN or inf); remove or repair it");
   }
   r.unit_given = !units.empty();
-  if (r.unit_given) {
-    r.rate_unit = parse_unit(units);
-    if (r.rate_unit.quantity == Quantity::angle || r.rate_unit.quantity == Quantity::time) {
-      throw InputError("units='" + units + "' is an angle or time unit but the samples are rates; "
-                       "give a rate unit such as 'deg/s', 'rad/s' or 'm/s^2'");
-    }
-  } else {
-    r.rate_unit = Unit{"input unit", Quantity::dimensionless, 1.0};
-  }
-  if (const double to_si = r.rate_unit.to_si; to_si != 1.0) {
-    for (double& v : rate) v *= to_si;
-  }
+  r.rate_unit = rate_unit_of(units);
+  scale_to_si(rate, r.rate_unit);
   const std::span<const double> values(rate);
   const double offset = compensated_mean(values.first(std::min(values.size(), kOffsetSamples)));
   r.phase_si = phase_from_rate(values, 1.0 / rate_hz, offset);
