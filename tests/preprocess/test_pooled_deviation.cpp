@@ -17,6 +17,7 @@
 #include "imunoise/phase.hpp"
 #include "imunoise/preprocess/pooled_deviation.hpp"
 #include "imunoise/study/fit_stage.hpp"
+#include "preprocess/preprocess_support.hpp"
 
 namespace imunoise::preprocess {
 namespace {
@@ -24,13 +25,7 @@ namespace {
 const Estimator kPoolable[] = {Estimator::adev, Estimator::oadev, Estimator::mdev,
                                Estimator::tdev, Estimator::hdev, Estimator::ohdev};
 
-std::vector<double> white(std::size_t n, double sigma, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0.0, sigma);
-  std::vector<double> v(n);
-  for (auto& x : v) x = g(rng);
-  return v;
-}
+using test::white;
 
 // The definition, written out: sum of squared terms and their count on one segment's angle
 // samples x (plain running sum of the rates from 0), for estimator e at factor m.

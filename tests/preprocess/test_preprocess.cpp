@@ -16,17 +16,12 @@
 #include "imunoise/preprocess/dynamic_allan.hpp"
 #include "imunoise/preprocess/preprocess.hpp"
 #include "imunoise/preprocess/temperature.hpp"
+#include "preprocess/preprocess_support.hpp"
 
 namespace imunoise::preprocess {
 namespace {
 
-std::vector<double> white(std::size_t n, double sigma, unsigned seed) {
-  std::mt19937_64 rng(seed);
-  std::normal_distribution<double> g(0.0, sigma);
-  std::vector<double> v(n);
-  for (auto& x : v) x = g(rng);
-  return v;
-}
+using test::white;
 
 TEST(Detrend, LinearDriftRecoveredWithinItsStandardErrorAndReported) {
   const double rate = 100.0;
