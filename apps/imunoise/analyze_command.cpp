@@ -4,7 +4,6 @@
 #include <unistd.h>
 
 #include <filesystem>
-#include <fstream>
 #include <memory>
 #include <string>
 #include <vector>
@@ -18,39 +17,26 @@
 #include "imunoise/estimator.hpp"
 #include "imunoise/fit/report.hpp"
 #include "imunoise/io/binary_reader.hpp"
-#include "imunoise/io/text_reader.hpp"
 #include "imunoise/spec/spec.hpp"
+#include "imunoise/load/load.hpp"
 #include "imunoise/study/study.hpp"
 #include "imunoise/study/write.hpp"
+#include "fit_options.hpp"
 #include "input_options.hpp"
 #include "study_progress.hpp"
-#include "study_record.hpp"
 
 namespace imunoise::cli {
 namespace {
 
 struct AnalyzeOptionsCli {
-  std::vector<std::string> files;
+  MultiInputOptions inputs;
+  FitOptionsCli fit;
   std::string dir;
   bool force = false;
-  std::string columns;       // a,b,c: names or 0-based indexes; empty: every value column
   std::string names;         // channel names replacing the derived ones
-  std::string time_column;
-  double rate_hz = 0.0;
-  std::string units;         // one unit, or one per channel
-  std::string input = "rate";
-  double scale = 1.0;
-  double sensitivity = 0.0;
-  std::string binary;
-  std::size_t channels = 1;
-  bool allow_gaps = false;
-  bool davar = false;            // dynamic Allan variance heat map and stationarity verdict
-  double davar_window_s = 0.0;
   std::string spec;
   std::string geometry;
   std::string estimators = "oadev";
-  std::string method = "wls";
-  double level = 0.95;
   double ci_level = 0.683;
   double nav_hours = 1.0;
   bool keep_going = false;
@@ -64,116 +50,53 @@ std::string stem_of(const std::string& file) {
   return std::filesystem::path(file).stem().string();
 }
 
-// The value columns of a text file: every header field (or index) but the time column. Only
-// the first non-comment line is read here; the reader checks the rest.
-std::vector<std::string> text_columns(const std::string& file, const std::string& time_column,
-                                      bool& has_header) {
-  std::ifstream in(file);
-  if (!in) throw InputError(file + ": cannot open the file; check the path");
-  std::string line;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const auto first = line.find_first_not_of(" \t");
-    if (first == std::string::npos || line[first] == '#') continue;
-    break;
-  }
-  if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
-  const auto hash = line.find('#');
-  if (hash != std::string::npos) line.erase(hash);
-  char sep = ' ';
-  if (line.find('\t') != std::string::npos) sep = '\t';
-  else if (line.find(';') != std::string::npos) sep = ';';
-  else if (line.find(',') != std::string::npos) sep = ',';
-  std::vector<std::string> fields;
-  std::string field;
-  auto flush = [&] {
-    auto b = field.find_first_not_of(" \t\"");
-    auto e = field.find_last_not_of(" \t\"");
-    fields.push_back(b == std::string::npos ? std::string() : field.substr(b, e - b + 1));
-    field.clear();
-  };
-  if (sep == ' ') {
-    std::string token;
-    for (char c : line) {
-      if (c == ' ' || c == '\t') {
-        if (!field.empty()) flush();
-      } else {
-        field += c;
-      }
-    }
-    if (!field.empty()) flush();
-  } else {
-    for (char c : line) {
-      if (c == sep) flush(); else field += c;
-    }
-    flush();
-  }
-  has_header = false;
-  for (const auto& f : fields) has_header = has_header || !io::parse_number(f).has_value();
-  std::vector<std::string> columns;
-  for (std::size_t i = 0; i < fields.size(); ++i) {
-    const std::string name = has_header ? fields[i] : std::to_string(i);
-    if (!time_column.empty() && (time_column == name || time_column == std::to_string(i))) continue;
-    columns.push_back(has_header ? name : std::to_string(i));
-  }
-  return columns;
-}
-
 struct ChannelInput {
-  InputOptions input;
+  load::LoadOptions input;
   std::string name;
 };
 
-// Every (file, column) pair to load, with its name.
+// The name of a channel in the report: its column or channel name, prefixed with the file's
+// stem when several files are studied; the stem alone for a file of one unnamed channel.
+std::string channel_name(const std::string& file, const std::string& column, std::size_t n_files,
+                         std::size_t n_columns, bool named, bool binary) {
+  if (n_columns == 1 && column.empty()) return stem_of(file);
+  const bool several = n_columns > 1;
+  const std::string label = named ? column : (binary ? "ch" + column : "col" + column);
+  if (n_files == 1) return several || named ? label : stem_of(file);
+  return several ? stem_of(file) + ":" + label : stem_of(file);
+}
+
+// Every (file, channel) pair to load, with its name.
 std::vector<ChannelInput> plan_channels(const AnalyzeOptionsCli& o,
                                         std::vector<study::FailedInput>& failed) {
   std::vector<ChannelInput> plan;
-  const auto wanted = split_comma_list(o.columns);
-  for (const auto& file : o.files) {
-    InputOptions base;
+  const auto wanted = split_comma_list(o.inputs.columns);
+  for (const auto& file : o.inputs.files) {
+    load::LoadOptions base = o.inputs.load;
     base.file = file;
-    base.time_column = o.time_column;
-    base.binary = o.binary;
-    base.channels = o.channels;
-    base.rate_hz = o.rate_hz;
-    base.input = o.input;
-    base.scale = o.scale;
-    base.sensitivity = o.sensitivity;
-    base.allow_gaps = o.allow_gaps;
-    base.davar = o.davar;
-    base.davar_window_s = o.davar_window_s;
-    const bool binary = !o.binary.empty() ||
-                        (file != "-" && io::binary_format_from_extension(file).has_value());
     std::vector<std::string> columns = wanted;
-    bool named = false;
+    bool named = !wanted.empty();
+    bool binary = false;
     if (columns.empty()) {
-      if (binary) {
-        for (std::size_t c = 0; c < o.channels; ++c) columns.push_back(std::to_string(c));
-      } else if (file != "-") {
-        try {
-          columns = text_columns(file, o.time_column, named);
-        } catch (const InputError& e) {
-          if (!o.keep_going) throw;
-          failed.push_back({file, e.what()});
-          continue;
-        }
-      } else {
-        columns.push_back("");
+      try {
+        auto found = load::file_channels(base);
+        columns = std::move(found.names);
+        named = found.named;
+        binary = found.binary;
+        if (!found.time_column.empty()) base.time_column = found.time_column;
+        if (!found.note.empty()) fmt::print(stderr, "imunoise: note: {}\n", found.note);
+      } catch (const InputError& e) {
+        if (!o.keep_going) throw;
+        failed.push_back({file, e.what()});
+        continue;
       }
     } else {
-      named = true;
+      binary = !base.binary.empty() ||
+               (file != "-" && io::binary_format_from_extension(file).has_value());
     }
     for (const auto& column : columns) {
-      ChannelInput ch{base, ""};
+      ChannelInput ch{base, channel_name(file, column, o.inputs.files.size(), columns.size(), named, binary)};
       ch.input.column = column;
-      const bool several = columns.size() > 1;
-      const std::string label = named ? column : (binary ? "ch" + column : "col" + column);
-      if (o.files.size() == 1) {
-        ch.name = several || named ? label : stem_of(file);
-      } else {
-        ch.name = several ? stem_of(file) + ":" + label : stem_of(file);
-      }
-      if (columns.size() == 1 && column.empty()) ch.name = stem_of(file);
       plan.push_back(std::move(ch));
     }
   }
@@ -185,7 +108,7 @@ std::vector<ChannelInput> plan_channels(const AnalyzeOptionsCli& o,
     }
     for (std::size_t i = 0; i < plan.size(); ++i) plan[i].name = names[i];
   }
-  const auto units = split_comma_list(o.units);
+  const auto units = split_comma_list(o.inputs.load.units);
   if (units.size() > 1 && units.size() != plan.size()) {
     throw InputError(fmt::format("--units gives {} units for {} channels; fix: one unit for all, "
                                  "or one per channel in file and column order",
@@ -205,8 +128,7 @@ void run_analyze(const AnalyzeOptionsCli& o) {
   validate_confidence_level(o.ci_level, "--ci");
   so.curves.ci_level = o.ci_level;
   so.curves.threads = o.threads;
-  so.fit.method = fit::parse_method(o.method);
-  so.fit.level = o.level;
+  so.fit = to_fit_options(o.fit);
   if (!o.spec.empty()) so.spec = resolve_spec(o.spec);
   so.geometry = o.geometry;
   so.nav_hours = o.nav_hours;
@@ -220,10 +142,13 @@ void run_analyze(const AnalyzeOptionsCli& o) {
   for (std::size_t i = 0; i < plan.size(); ++i) {
     progress.update("reading " + plan[i].name, 0.0);
     try {
-      records.push_back(to_study_record(load_phase(plan[i].input), plan[i].name));
+      Record record = load::load(plan[i].input);
+      print_load_notes(record);
+      record.name = plan[i].name;
+      records.push_back(std::move(record));
     } catch (const InputError& e) {
       if (!o.keep_going) {
-        if (o.files.size() > 1 || plan.size() > 1) {
+        if (o.inputs.files.size() > 1 || plan.size() > 1) {
           throw InputError(std::string(e.what()) +
                            " (pass --keep-going to study the other inputs without it)");
         }
@@ -256,31 +181,12 @@ void setup_analyze(CLI::App& app) {
   auto* command = app.add_subcommand(
       "analyze", "the whole study of one or more recordings: curves with confidence, noise model, "
                  "datasheet verdict, report (HTML, JSON, Markdown, CSV, figures) in -o DIR");
-  command->add_option("files", o->files, "input files (text or raw binary); - for standard input")
-      ->required();
+  add_multi_input_options(*command, o->inputs,
+                          "input files (text, raw binary, ROS 1 bag, MCAP, HDF5 or EuRoC CSV); - for "
+                          "standard input");
   command->add_option("-o,--output", o->dir, "report directory (created when missing)")->required();
   command->add_flag("--force", o->force, "replace the report files of an existing DIR");
-  command->add_option("--columns", o->columns,
-                      "value columns (header names or 0-based indexes, comma list); default: "
-                      "every column but the time column");
   command->add_option("--names", o->names, "channel names, comma list in file and column order");
-  command->add_option("--time-column", o->time_column,
-                      "column of timestamps (s, or integer ns); derives the rate and checks gaps");
-  command->add_option("--rate", o->rate_hz, "sample rate (Hz)");
-  command->add_option("--units", o->units,
-                      "unit of the values (deg/s, rad/s, m/s^2, g, ...): one for every channel or "
-                      "a comma list, one per channel");
-  command->add_option("--input", o->input, "what the samples are: rate (freq) or angle (phase)")
-      ->capture_default_str();
-  command->add_option("--scale", o->scale, "multiply raw values by this factor");
-  command->add_option("--sensitivity", o->sensitivity, "divide raw values by this sensitivity");
-  command->add_option("--binary", o->binary, "raw binary samples: f32|f64|i16|i32[:le|be]");
-  command->add_option("--channels", o->channels, "interleaved channels in binary input")
-      ->capture_default_str();
-  command->add_flag("--allow-gaps", o->allow_gaps, "treat gaps in the time column as equally spaced");
-  command->add_flag("--davar", o->davar,
-                    "dynamic Allan variance per channel: heat map and stationarity verdict in the report");
-  command->add_option("--davar-window", o->davar_window_s, "DAVAR window (s); default record / 20");
   std::string names;
   for (const auto& name : builtin_spec_names()) names += (names.empty() ? "" : ", ") + name;
   command->add_option("--spec", o->spec,
@@ -291,10 +197,7 @@ void setup_analyze(CLI::App& app) {
   command->add_option("--estimator", o->estimators,
                       "curves to compute (comma list, as dev); oadev is always computed")
       ->capture_default_str();
-  command->add_option("--method", o->method, "fit method: wls, ols, slope")->capture_default_str();
-  command->add_option("--level", o->level, "confidence level of the fitted coefficients")
-      ->capture_default_str()
-      ->check(CLI::Range(0.5, 0.999));
+  add_fit_options(*command, o->fit);
   command->add_option("--ci", o->ci_level, "confidence level of the curves' bars")
       ->capture_default_str();
   command->add_option("--nav-hours", o->nav_hours, "duration of the navigation-error curves (h)")

@@ -19,9 +19,9 @@
 #include "imunoise/total.hpp"
 #include "distributed_record.hpp"
 #include "imunoise/study/curves.hpp"
+#include "imunoise/study/fit_stage.hpp"
 #include "input_options.hpp"
 #include "output.hpp"
-#include "study_record.hpp"
 
 namespace imunoise::cli {
 namespace {
@@ -43,8 +43,8 @@ struct DevOptionsCli {
   bool mpi = false;
 };
 
-// Where the record came from and what preprocessing did (issue 16), on each curve object.
-void add_provenance(const PhaseRecord& record, nlohmann::json& object) {
+// Where the record came from and what preprocessing did, on each curve object.
+void add_provenance(const Record& record, nlohmann::json& object) {
   if (!record.format.empty()) {
     object["recording"] = {{"format", record.format}, {"stream", record.stream},
                            {"channel", record.channel}};
@@ -53,10 +53,8 @@ void add_provenance(const PhaseRecord& record, nlohmann::json& object) {
   if (record.davar) object["davar"] = preprocess::davar_json(*record.davar);
   if (!record.temperature_bins.empty()) {
     // Per bin: bias, the N/B read-offs and the full noise-model fit (default fit options).
-    const fit::RecordInfo info{record.source, record.rate_hz, record.n_samples, record.rate_unit,
-                               unit_label(record),
-                               record.unit_given && record.rate_unit.quantity == Quantity::angular_rate};
-    object["temperature_bins"] = preprocess::temperature_bins_json(record.temperature_bins, info, fit::FitOptions{});
+    object["temperature_bins"] =
+        preprocess::temperature_bins_json(record.temperature_bins, study::record_info(record), fit::FitOptions{});
   }
 }
 
@@ -78,7 +76,7 @@ void run_dev_mpi(const DevOptionsCli& options, const std::vector<Estimator>& est
   if (options.bias_correct) throw InputError("--bias-correct does not apply to --mpi's estimators");
   const DistributedCurves dist = distributed_deviations(options.input, estimators, grid);
   if (!dist.root) return;
-  const study::Record record = to_study_record(PhaseRecord(dist.record));
+  const Record& record = dist.record;
   ConfidenceOptions confidence;
   confidence.level = options.ci_level;
   confidence.forced_alpha = forced_alpha;
@@ -125,9 +123,8 @@ void run_dev(const DevOptionsCli& options) {
     return;
   }
 
-  PhaseRecord loaded = load_phase(options.input);
-  // to_study_record moves the samples, the source and the timing; the provenance stays here.
-  const study::Record record = to_study_record(std::move(loaded));
+  const Record record = load::load(options.input);
+  print_load_notes(record);
   study::CurveOptions co;
   co.estimators = estimators;
   co.grid = grid;
@@ -145,7 +142,7 @@ void run_dev(const DevOptionsCli& options) {
   std::string text;
   if (options.format == "json") {
     auto array = study::curves_json(record, curves);
-    for (auto& object : array) add_provenance(loaded, object);
+    for (auto& object : array) add_provenance(record, object);
     text = (array.size() == 1 ? array[0] : array).dump(1) + "\n";
   } else if (options.format == "csv") {
     text = study::curves_csv(curves);

@@ -8,6 +8,7 @@
 #include "imunoise/difference_accumulator.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/io/binary_reader.hpp"
+#include "imunoise/load/integrate.hpp"
 #include "imunoise/phase.hpp"
 #include "imunoise/theo.hpp"
 #include "mpi_session.hpp"
@@ -15,8 +16,6 @@
 namespace imunoise::cli {
 namespace {
 
-// The serial reader's offset: the mean of the first 2^20 samples (input_options.cpp).
-constexpr std::size_t kOffsetSamples = std::size_t{1} << 20;
 constexpr int kSliceTag = 21;
 
 // Every rank passes here together: when any rank failed, all leave (the failed ones with
@@ -38,7 +37,7 @@ std::size_t cut(std::size_t n, int rank, int size) {
   return (n / p) * r + (n % p) * r / p;
 }
 
-Slice read_binary_slice(const RecordPlan& plan, const std::string& path, mpi::World world,
+Slice read_binary_slice(const load::RecordPlan& plan, const std::string& path, mpi::World world,
                         std::size_t& n_phase) {
   std::optional<std::string> error;
   std::optional<io::BinaryReader> reader;
@@ -48,10 +47,10 @@ Slice read_binary_slice(const RecordPlan& plan, const std::string& path, mpi::Wo
     reader.emplace(path, plan.read);
     n_records = *reader->record_count();
     if (world.rank == 0 && plan.meta.kind == InputKind::rate) {
-      std::vector<double> first(std::min(kOffsetSamples, n_records));
+      std::vector<double> first(std::min(load::kRateOffsetSamples, n_records));
       reader->read(first);
       for (auto& v : first) v *= plan.to_si;
-      offset = compensated_mean(first);
+      offset = load::rate_offset(first);  // the serial loader's offset
     }
   } catch (const InputError& e) {
     error = e.what();
@@ -93,12 +92,12 @@ Slice read_binary_slice(const RecordPlan& plan, const std::string& path, mpi::Wo
 }
 
 // Text: rank 0 reads everything and sends each rank its slice of the phase.
-Slice scatter_text(const InputOptions& input, mpi::World world, PhaseRecord& record,
+Slice scatter_text(const InputOptions& input, mpi::World world, Record& record,
                    std::size_t& n_phase) {
   std::optional<std::string> error;
   if (world.rank == 0) {
     try {
-      record = load_phase(input);
+      record = load::load(input);
     } catch (const InputError& e) {
       error = e.what();
     }
@@ -149,9 +148,9 @@ DistributedCurves distributed_deviations(const InputOptions& input,
   DistributedCurves out;
   out.root = world.rank == 0;
   std::optional<std::string> error;
-  RecordPlan plan;
+  load::RecordPlan plan;
   try {
-    plan = plan_record(input);
+    plan = load::plan_record(input);
     if (input.file == "-") {
       throw InputError("--mpi reads the file on every rank: give a file path, not standard input");
     }

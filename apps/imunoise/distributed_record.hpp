@@ -26,7 +26,7 @@ namespace imunoise::cli {
 
 struct DistributedCurves {
   bool root = false;                          ///< rank 0: the only rank holding the results
-  PhaseRecord record;                         ///< description (phase_si empty); valid on rank 0
+  Record record;                         ///< description (phase_si empty); valid on rank 0
   std::size_t n_phase = 0;                    ///< phase samples of the whole record
   std::vector<std::vector<DevPoint>> curves;  ///< per estimator, SI, no confidence (rank 0)
   /// Rank 0's own slice of the phase (SI), the first ~n_phase/P points: enough to identify the

@@ -1,4 +1,4 @@
-// imunoise fleet: many sensors, one file each: every record analysed (sensor_analysis.hpp), then
+// imunoise fleet: many sensors, one file each: every record studied (imunoise/study/sensor.hpp), then
 // the fleet document, distributions, pass rate and outliers (imunoise/fleet/fleet.hpp) written
 // to DIR/fleet.json and DIR/fleet.csv.
 //
@@ -25,25 +25,25 @@
 #include "imunoise/fleet/report.hpp"
 #include "imunoise/study/write.hpp"
 #include "imunoise/spec/spec.hpp"
+#include "fit_options.hpp"
 #include "input_options.hpp"
 #include "mpi_session.hpp"
 #include "output.hpp"
-#include "sensor_analysis.hpp"
+#include "imunoise/load/load.hpp"
+#include "imunoise/study/sensor.hpp"
+#include "imunoise/tau_grid.hpp"
 
 namespace imunoise::cli {
 namespace {
 
 struct FleetOptionsCli {
-  std::vector<std::string> files;
-  InputOptions input;  ///< shared by every file (file is set per file)
+  MultiInputOptions inputs;  ///< the files; the load options are shared by every file
+  FitOptionsCli fit;
   std::string dir;
   bool force = false;
   bool strict = false;
   bool keep_going = false;  ///< the default; accepted for scripts that say it
-  std::string method = "wls";
-  std::string terms = "Q,N,B,K";
   std::string taus = "octave";
-  double level = 0.95;
   std::string spec;
   double outlier_z = 3.5;
   std::string title = "imunoise fleet report";
@@ -55,31 +55,28 @@ struct FleetOptionsCli {
 constexpr int kTaskTag = 31;
 constexpr int kResultTag = 32;
 
-SensorAnalysisOptions analysis_options(const FleetOptionsCli& options) {
-  SensorAnalysisOptions a;
-  a.fit.method = fit::parse_method(options.method);
-  a.fit.level = options.level;
-  fit::parse_terms(options.terms, a.fit);
-  std::string why;
-  if (!a.fit.IsValid(&why)) throw InputError("fit options: " + why);
-  a.taus = options.taus;
-  a.spec = options.spec;
+study::SensorOptions analysis_options(const FleetOptionsCli& options) {
+  study::SensorOptions a;
+  a.fit = to_fit_options(options.fit);
+  a.grid = parse_tau_grid(options.taus);
+  if (!options.spec.empty()) a.spec = resolve_spec(options.spec);  // a bad --spec fails once, not per file
   a.nav = options.nav;
   a.nav_hours = options.nav_hours;
   if (!(a.nav_hours > 0.0)) throw InputError("--nav-hours must be positive");
   return a;
 }
 
-// The per-file step: the fit document as it would be parsed back from its JSON text, so that a
-// result that travelled between ranks (as text) and one computed here are the same values.
-fleet::SensorOutcome analyze_file(const FleetOptionsCli& options, const SensorAnalysisOptions& analysis,
+// The per-file step: load the record and study it (imunoise/study/sensor.hpp).
+fleet::SensorOutcome analyze_file(const FleetOptionsCli& options, const study::SensorOptions& analysis,
                                   std::size_t index) {
   fleet::SensorOutcome outcome;
-  outcome.file = options.files[index];
-  InputOptions input = options.input;
+  outcome.file = options.inputs.files[index];
+  load::LoadOptions input = options.inputs.load;
   input.file = outcome.file;
+  input.column = options.inputs.columns;
   try {
-    outcome.fit = nlohmann::json::parse(analyze_sensor(input, analysis).dump());
+    const Record record = load::load(input);
+    outcome.fit = study::sensor_json(record, analysis, study::study_sensor(record, analysis));
   } catch (const InputError& e) {
     outcome.error = e.what();
   } catch (const std::bad_alloc&) {
@@ -108,7 +105,7 @@ std::size_t decode(const std::vector<std::uint8_t>& bytes, const FleetOptionsCli
   std::uint64_t index = 0;
   std::memcpy(&index, bytes.data(), 8);
   const std::string text(bytes.begin() + 8, bytes.end());
-  outcome.file = options.files.at(index);
+  outcome.file = options.inputs.files.at(index);
   if (text.front() == 'J') {
     outcome.fit = nlohmann::json::parse(text.substr(1));
   } else {
@@ -139,13 +136,13 @@ bool must_die(const std::string& file) {
   return file.size() >= s.size() && file.compare(file.size() - s.size(), s.size(), s) == 0;
 }
 
-void worker(const FleetOptionsCli& options, const SensorAnalysisOptions& analysis) {
+void worker(const FleetOptionsCli& options, const study::SensorOptions& analysis) {
   for (;;) {
     const auto task = mpi::receive_bytes(0, kTaskTag);
     if (task.empty()) return;
     std::uint64_t index = 0;
     std::memcpy(&index, task.data(), 8);
-    if (must_die(options.files.at(index))) std::raise(SIGKILL);
+    if (must_die(options.inputs.files.at(index))) std::raise(SIGKILL);
     mpi::send_bytes(0, kResultTag, encode(index, analyze_file(options, analysis, index)));
   }
 }
@@ -159,11 +156,11 @@ void send_task(int rank, std::size_t index) {
 
 // Rank 0 of a parallel run: dynamic hand-out, results in the files' order.
 std::vector<fleet::SensorOutcome> dispatch(const FleetOptionsCli& options, int ranks) {
-  std::vector<fleet::SensorOutcome> results(options.files.size());
+  std::vector<fleet::SensorOutcome> results(options.inputs.files.size());
   std::size_t next = 0;
   int busy = 0;
   for (int r = 1; r < ranks; ++r) {
-    if (next < options.files.size()) {
+    if (next < options.inputs.files.size()) {
       send_task(r, next++);
       ++busy;
     } else {
@@ -182,7 +179,7 @@ std::vector<fleet::SensorOutcome> dispatch(const FleetOptionsCli& options, int r
       report_failure(results[index], options.strict);
       if (options.strict && first_failure == nullptr) first_failure = &results[index];
     }
-    if (next < options.files.size() && first_failure == nullptr) {
+    if (next < options.inputs.files.size() && first_failure == nullptr) {
       send_task(from, next++);
       ++busy;
     } else {
@@ -195,9 +192,12 @@ std::vector<fleet::SensorOutcome> dispatch(const FleetOptionsCli& options, int r
 
 void run_fleet(const FleetOptionsCli& options) {
   const mpi::World world = mpi::start();
-  const SensorAnalysisOptions analysis = analysis_options(options);
+  const study::SensorOptions analysis = analysis_options(options);
+  if (options.inputs.columns.find(',') != std::string::npos) {
+    throw InputError("--column " + options.inputs.columns + ": the fleet studies one channel per file "
+                     "(one sensor each); fix: name one column, or use analyze for several");
+  }
   if (!(options.outlier_z > 0.0)) throw InputError("--outlier-z must be positive");
-  if (!options.spec.empty()) resolve_spec(options.spec);  // a bad --spec fails once, not per file
   const std::filesystem::path dir(options.dir);
   const auto json_path = (dir / "fleet.json").string();
   const auto csv_path = (dir / "fleet.csv").string();
@@ -237,7 +237,7 @@ void run_fleet(const FleetOptionsCli& options) {
   }
   std::vector<fleet::SensorOutcome> results;
   if (world.size == 1) {
-    for (std::size_t i = 0; i < options.files.size(); ++i) {
+    for (std::size_t i = 0; i < options.inputs.files.size(); ++i) {
       results.push_back(analyze_file(options, analysis, i));
       if (results.back().fit.is_null()) {
         if (options.strict) fail_strict(results.back());
@@ -281,33 +281,16 @@ void setup_fleet(CLI::App& app) {
                "distributions, pass rate, outliers -> DIR/fleet.json, DIR/fleet.csv, DIR/report.html|md "
                "with figures; also under "
                "mpirun -np P");
-  command->add_option("files", options->files, "records, one per sensor")->required();
+  add_multi_input_options(*command, options->inputs, "records, one per sensor");
   command->add_option("-o,--output", options->dir, "output directory")->required();
   command->add_flag("--force", options->force, "replace existing fleet.json / fleet.csv / report");
   command->add_option("--title", options->title, "title of the report")->capture_default_str();
-  command->add_flag("--quiet", options->quiet, "no notes on stderr about the report");
+  command->add_flag("-q,--quiet", options->quiet, "no notes on stderr about the report");
   command->add_flag("--strict", options->strict, "stop at the first file that cannot be analysed");
   command->add_flag("--keep-going", options->keep_going,
                     "report a file that cannot be analysed and go on (the default)");
-  auto& in = options->input;
-  command->add_option("--rate", in.rate_hz, "sample rate (Hz) of every file (default: each "
-                                             "file's time column or imunoise simulate header)");
-  command->add_option("--input", in.input, "rate (freq) or angle (phase)")->capture_default_str();
-  command->add_option("--units", in.units, "unit of the values, e.g. deg/s");
-  command->add_option("--column", in.column, "column: 0-based index or header name; binary: channel");
-  command->add_option("--time-column", in.time_column, "column of timestamps (s or integer ns)");
-  command->add_flag("--allow-gaps", in.allow_gaps, "treat timestamp gaps as equally spaced");
-  command->add_option("--binary", in.binary, "raw binary samples: f32|f64|i16|i32[:le|be]");
-  command->add_option("--channels", in.channels, "interleaved channels in binary input")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{65536}));
-  command->add_option("--scale", in.scale, "multiply raw values by this factor");
-  command->add_option("--sensitivity", in.sensitivity, "divide raw values by this sensitivity");
-  command->add_option("--method", options->method, "fit method: wls, ols, slope")->capture_default_str();
-  command->add_option("--terms", options->terms, "terms to fit (Q,N,B,K,R)")->capture_default_str();
+  add_fit_options(*command, options->fit);
   command->add_option("--taus", options->taus, "tau grid of the Allan curves")->capture_default_str();
-  command->add_option("--level", options->level, "confidence level of the intervals")
-      ->capture_default_str()
-      ->check(CLI::Range(0.5, 0.999));
   command->add_option("--spec", options->spec, "datasheet: built-in name (tg100) or YAML file");
   command->add_flag("--nav", options->nav,
                     "each gyro's navigation error at the horizon (the study's models and latitude) "

@@ -28,6 +28,8 @@
 #include "imunoise/redundant/report.hpp"
 #include "imunoise/redundant/sensor_fit.hpp"
 #include "imunoise/units.hpp"
+#include "imunoise/load/load.hpp"
+#include "input_options.hpp"
 #include "output.hpp"
 
 namespace imunoise::cli {
@@ -37,13 +39,7 @@ struct RedundantOptionsCli {
   std::string geometry;
   std::vector<std::string> from;
   std::vector<std::string> fuse;
-  double rate_hz = 0.0;
-  std::string units;
-  std::string column;
-  std::string time_column;
-  std::string binary;
-  std::size_t channels = 1;
-  double scale = 1.0;
+  load::LoadOptions load;    // how each --fuse recording is read (file set per recording)
   std::string output;        // -o FUSED.csv
   std::string json_output;   // --json FILE
   bool force = false;
@@ -80,55 +76,16 @@ SimulateHeader read_simulate_header(const std::string& path) {
   return h;
 }
 
-struct Recording {
-  std::string source;
-  double rate_hz = 0.0;
-  std::vector<double> rate_si;
-};
-
-Recording read_recording(const RedundantOptionsCli& o, const std::string& file, double to_si) {
-  Recording r;
-  r.source = file;
-  if (!std::filesystem::exists(file)) throw InputError(file + ": no such file; check the path");
-  const bool binary = !o.binary.empty() || io::binary_format_from_extension(file).has_value();
-  if (binary) {
-    io::BinaryReadOptions read;
-    read.format = !o.binary.empty() ? io::parse_binary_format(o.binary) : *io::binary_format_from_extension(file);
-    read.channels = o.channels;
-    if (!o.column.empty()) {
-      const auto sel = io::parse_column_selector(o.column);
-      if (!std::holds_alternative<std::size_t>(sel)) {
-        throw InputError("--column must be a channel index for binary input, got '" + o.column + "'");
-      }
-      read.column = std::get<std::size_t>(sel);
-    }
-    read.scale = o.scale;
-    r.rate_si = io::read_binary_file(file, read);
-    r.rate_hz = o.rate_hz;
-  } else {
-    io::TextReadOptions read;
-    if (!o.column.empty()) read.column = io::parse_column_selector(o.column);
-    if (!o.time_column.empty()) read.time_column = io::parse_column_selector(o.time_column);
-    auto columns = io::read_text_file(file, read);
-    r.rate_hz = o.rate_hz;
-    if (read.time_column) {
-      const auto timing = io::check_timing(columns.time_s, file, &columns.lines, false);
-      if (o.rate_hz > 0 && std::abs(timing.rate_hz / o.rate_hz - 1.0) > 0.01) {
-        throw InputError(fmt::format("{}: --rate {} Hz disagrees with the time column ({:.6g} Hz)",
-                                     file, o.rate_hz, timing.rate_hz));
-      }
-      if (!(r.rate_hz > 0)) r.rate_hz = timing.rate_hz;
-    }
-    if (!(r.rate_hz > 0)) r.rate_hz = read_simulate_header(file).rate_hz;
-    r.rate_si = std::move(columns.values);
-    for (auto& v : r.rate_si) v *= o.scale;
+// One --fuse recording through the loader, its rate samples (SI) kept for the fusion. Without
+// --units the recordings are in the unit of the --from fits, when those state one.
+Record read_recording(const RedundantOptionsCli& o, const std::string& file, const Unit* fits_unit) {
+  load::LoadOptions options = o.load;
+  options.file = file;
+  options.keep_rates = true;
+  if (options.units.empty() && fits_unit != nullptr && fits_unit->name != "input unit") {
+    options.units = fits_unit->name;
   }
-  if (r.rate_si.empty()) throw InputError(file + ": no samples");
-  for (auto& v : r.rate_si) v *= to_si;
-  if (!(r.rate_hz > 0) || !std::isfinite(r.rate_hz)) {
-    throw InputError(file + ": unknown sample rate; pass --rate HZ (or --time-column)");
-  }
-  return r;
+  return load::load(options);
 }
 
 // Writes the fused CSV without holding it in memory: a temporary file renamed at the end, never
@@ -248,8 +205,8 @@ void run_redundant(RedundantOptionsCli& o) {
   const std::size_t n = geometry.size();
   std::string why;
   if (!o.detection.IsValid(&why)) throw InputError("detection options: " + why);
-  if (!std::isfinite(o.scale) || o.scale == 0.0) {
-    throw InputError(fmt::format("--scale must be finite and non-zero, got {}", o.scale));
+  if (!std::isfinite(o.load.scale) || o.load.scale == 0.0) {
+    throw InputError(fmt::format("--scale must be finite and non-zero, got {}", o.load.scale));
   }
 
   Unit unit{"rad/s", Quantity::angular_rate, 1.0};
@@ -262,10 +219,10 @@ void run_redundant(RedundantOptionsCli& o) {
     std::vector<std::filesystem::path> paths(o.from.begin(), o.from.end());
     models = redundant::read_fit_files(paths, unit);
   }
-  if (!o.units.empty()) {
-    const Unit given = parse_unit(o.units);
+  if (!o.load.units.empty()) {
+    const Unit given = parse_unit(o.load.units);
     if (given.quantity != Quantity::angular_rate) {
-      throw InputError("--units " + o.units + " is not an angular rate; the recordings are gyro rates (e.g. deg/s)");
+      throw InputError("--units " + o.load.units + " is not an angular rate; the recordings are gyro rates (e.g. deg/s)");
     }
     if (!models.empty() && given.name != unit.name && unit.name != "input unit") {
       throw InputError(fmt::format("--units {} but the fits ({}) are in {}: the recordings and the "
@@ -295,9 +252,6 @@ void run_redundant(RedundantOptionsCli& o) {
       throw InputError(fmt::format("--fuse: {} recordings for the {} sensors of geometry {}; give "
                                    "one per sensing axis, in order", o.fuse.size(), n, geometry.name));
     }
-    if (o.units.empty() && models.empty()) {
-      throw InputError("--fuse needs the unit of the recordings' values: pass --units deg/s (or rad/s, ...)");
-    }
     // Recordings written by `imunoise simulate` state their unit: they must agree.
     std::string first_unit, first_unit_file;
     for (const auto& f : o.fuse) {
@@ -312,12 +266,22 @@ void run_redundant(RedundantOptionsCli& o) {
                                      first_unit_file, first_unit));
       }
     }
-    if (!first_unit.empty() && !o.units.empty() && parse_unit(first_unit).name != unit.name) {
+    if (!first_unit.empty() && !o.load.units.empty() && parse_unit(first_unit).name != unit.name) {
       throw InputError(fmt::format("{} is in {} (its header says so) but --units is {}: pass "
-                                   "--units {}", first_unit_file, first_unit, o.units, first_unit));
+                                   "--units {}", first_unit_file, first_unit, o.load.units, first_unit));
     }
-    std::vector<Recording> recs;
-    for (const auto& f : o.fuse) recs.push_back(read_recording(o, f, unit.to_si));
+    std::vector<Record> recs;
+    for (const auto& f : o.fuse) recs.push_back(read_recording(o, f, models.empty() ? nullptr : &unit));
+    if (o.load.units.empty() && models.empty()) {
+      // Containers state their unit (rad/s for sensor_msgs/Imu); other files need --units.
+      for (const auto& r : recs) {
+        if (!r.unit_given || r.rate_unit.quantity != Quantity::angular_rate) {
+          throw InputError(r.source + ": --fuse needs the unit of the recordings' values: pass "
+                           "--units deg/s (or rad/s, ...)");
+        }
+      }
+      unit = recs.front().rate_unit;
+    }
     for (std::size_t i = 1; i < n; ++i) {
       if (std::abs(recs[i].rate_hz / recs[0].rate_hz - 1.0) > 1e-6) {
         throw InputError(fmt::format("{} is sampled at {:.9g} Hz but {} at {:.9g} Hz: the recordings "
@@ -373,14 +337,7 @@ void setup_redundant(CLI::App& app) {
       ->required();
   c->add_option("--from", o->from, "the sensors' fits (imunoise fit --format json), one per axis, in order");
   c->add_option("--fuse", o->fuse, "synchronous recordings, one per axis, in order (any format dev reads)");
-  c->add_option("--rate", o->rate_hz, "sample rate of the recordings (Hz)");
-  c->add_option("--units", o->units, "unit of the recordings' values, e.g. deg/s");
-  c->add_option("--column", o->column, "column of the rate in each recording (0-based index or name)");
-  c->add_option("--time-column", o->time_column, "column of timestamps (derives and checks the rate)");
-  c->add_option("--binary", o->binary, "raw binary recordings: f32|f64|i16|i32[:le|be]");
-  c->add_option("--channels", o->channels, "interleaved channels in binary recordings")
-      ->check(CLI::Range(std::size_t{1}, std::size_t{65536}));
-  c->add_option("--scale", o->scale, "multiply raw values by this factor");
+  add_load_options(*c, o->load);
   c->add_option("-o,--output", o->output, "write the fused recording (CSV t_s,x,y,z,p1..pk) to FILE");
   c->add_option("--json", o->json_output, "write the report to FILE instead of standard output");
   c->add_flag("--force", o->force, "replace existing output files");

@@ -1,6 +1,6 @@
 // The preprocessing keyword arguments of imunoise.dev / imunoise.fit: parsed here, run by the
 // library's pipeline (imunoise/preprocess/pipeline.hpp), the record built as the command line
-// builds it (apps/imunoise/input_options.cpp: SI, offset from the first 2^20 samples, integrated).
+// builds it (imunoise/load/load.hpp: finish_rates).
 #include "preprocessing.hpp"
 
 #include <algorithm>
@@ -10,6 +10,7 @@
 #include "imunoise/error.hpp"
 #include "imunoise/finite.hpp"
 #include "imunoise/io/timestamps.hpp"
+#include "imunoise/load/load.hpp"
 #include "imunoise/phase.hpp"
 #include "imunoise/study/fit_stage.hpp"
 #include "imunoise/units.hpp"
@@ -20,8 +21,6 @@ namespace imunoise::python {
 namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-constexpr std::size_t kOffsetSamples = std::size_t{1} << 20;
 
 std::vector<double> vector_of(const py::object& value, const char* what, std::size_t expected) {
   const Array a = Array::ensure(value);
@@ -118,43 +117,19 @@ PreparedRecord prepare_record(std::span<const double> samples, const py::object&
     options.temperature = "temperature";
     temperature = vector_of(args.temperature, "temperature", values.size());
   }
-  const std::string unit = r.unit_given ? std::string(si_unit_name(r.rate_unit.quantity)) : "input unit";
   py::gil_scoped_release release;  // the arguments are read: the rest is the library's work
-  out.steps = preprocess::run_pipeline(options, std::move(values), rate, breaks, std::move(temperature), r.source, unit);
-  values = std::move(out.steps.values);
-  out.steps.values.clear();
-  // As the command line's finish_rates: a split record keeps its rates and segments for the
-  // pooled estimators; one segment is simply the record.
-  if (out.steps.segments.size() > 1) {
-    r.segments = out.steps.segments;
-    r.n_samples = 0;
-    for (const auto& s : r.segments) r.n_samples += s.size();
-    r.rate_si = values;
-  } else {
-    if (out.steps.segments.size() == 1) {
-      const auto s = out.steps.segments.front();
-      values = std::vector<double>(values.begin() + static_cast<std::ptrdiff_t>(s.begin),
-                                   values.begin() + static_cast<std::ptrdiff_t>(s.end));
-    }
-    r.n_samples = values.size();
-  }
-  const std::span<const double> v(values);
-  const double offset = compensated_mean(v.first(std::min(v.size(), kOffsetSamples)));
-  r.phase_si = phase_from_rate(v, 1.0 / rate, offset);
-  if (const std::size_t k = first_non_finite(r.phase_si); k < r.phase_si.size()) {
-    throw InputError("array: the integral of the samples overflows at sample " + std::to_string(k) + "; check units");
-  }
-  for (const auto& line : out.steps.notes) r.table_notes.push_back("preprocessing: " + line);
+  // The loader's road from SI rates to a record: preprocessing, segments, integration.
+  out.record = load::finish_rates(std::move(r), std::move(values), options, breaks, std::move(temperature));
   return out;
 }
 
 void add_provenance(const PreparedRecord& prepared, const fit::FitOptions& fit_options, nlohmann::json& document) {
-  const auto& steps = prepared.steps;
-  if (!steps.notes.empty()) document["preprocessing"] = steps.notes;
-  if (steps.davar) document["davar"] = preprocess::davar_json(*steps.davar);
-  if (!steps.temperature_bins.empty()) {
+  const Record& record = prepared.record;
+  if (!record.preprocessing.empty()) document["preprocessing"] = record.preprocessing;
+  if (record.davar) document["davar"] = preprocess::davar_json(*record.davar);
+  if (!record.temperature_bins.empty()) {
     document["temperature_bins"] =
-        preprocess::temperature_bins_json(steps.temperature_bins, study::record_info(prepared.record), fit_options);
+        preprocess::temperature_bins_json(record.temperature_bins, study::record_info(record), fit_options);
   }
 }
 

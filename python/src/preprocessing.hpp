@@ -34,10 +34,9 @@ struct PreprocessArgs {
   [[nodiscard]] bool any() const;
 };
 
-/// A rate record after preprocessing, and what the steps said.
+/// A rate record after preprocessing (what the steps said is in the record's provenance).
 struct PreparedRecord {
   study::Record record;
-  preprocess::PipelineResult steps;  ///< values moved out; notes, davar, bins kept
 };
 
 /// Rate samples (in `units`, "" : not given) at `rate` Hz (None: from `time`) through the

@@ -17,6 +17,7 @@
 #include "imunoise/theo.hpp"
 
 #include "array_view.hpp"
+#include "imunoise/load/integrate.hpp"
 
 namespace py = pybind11;
 
@@ -62,7 +63,7 @@ py::tuple deviation(const std::string& name, const Array& data, double rate,
   {
     py::gil_scoped_release release;
     if (parse_input_kind(data_type) == InputKind::rate) {
-      integrated = phase_from_rate(samples, tau0_s, compensated_mean(samples));
+      integrated = load::integrate_rate(samples, rate);
       phase = integrated;
     }
   }

@@ -25,6 +25,8 @@
 #include "imunoise/io/timestamps.hpp"
 #include "imunoise/study/fit_stage.hpp"
 #include "preprocessing.hpp"
+#include "imunoise/load/load.hpp"
+#include "to_python.hpp"
 
 namespace py = pybind11;
 
@@ -90,7 +92,7 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
 
   fit::FitResult result;
   if (preprocessing.any()) {
-    // Timestamps or preprocessing (issue 16): the record built as the command line builds it,
+    // Timestamps or preprocessing: the record built as the command line builds it,
     // fitted by the study's fit stage (a split record is fitted to its pooled curve).
     if (kind != InputKind::rate) {
       throw InputError("skip, detrend, outliers, gaps, davar, temperature and time work on rate samples; "
@@ -106,45 +108,32 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
     }
     report["spec_comparison"] =
         spec ? comparison_json(compare(result.coefficients, *spec)) : nlohmann::json(nullptr);
-    return py::module_::import("json").attr("loads")(report.dump());
+    return to_python(report);
   }
   {
     py::gil_scoped_release release;
     if (const std::size_t i = first_non_finite(samples); i < samples.size()) {
       throw InputError("sample " + std::to_string(i) + " is not finite; remove or repair it");
     }
-    const double tau0_s = 1.0 / rate;
-    // One array: the phase (integrated when the samples are a rate), then scaled to SI — an
-    // angle unit and its rate (deg, deg/s) share to_si, the seconds being SI.
-    std::vector<double> phase =
-        kind == InputKind::rate ? phase_from_rate(samples, tau0_s, compensated_mean(samples))
-                                : std::vector<double>(samples.begin(), samples.end());
+    // The record as the loader makes it (SI; a rate integrated from its offset), fitted by the
+    // one Record fit. An angle unit and its rate (deg, deg/s) share to_si, the seconds being SI.
+    Record record;
+    record.name = record.source = "array";
+    record.kind = kind;
+    record.rate_hz = rate;
+    record.rate_unit = info.rate_unit;
+    record.unit_given = !units.empty();
+    std::vector<double> values(samples.begin(), samples.end());
     if (const double to_si = info.rate_unit.to_si; to_si != 1.0) {
-      for (double& v : phase) v *= to_si;
+      for (double& v : values) v *= to_si;
     }
-    auto warnings = fit::record_warnings(phase, tau0_s);
-    if (fit::is_constant_record(phase, tau0_s)) {
-      throw InputError("the rate is constant (all-zero or a fixed value): there is no noise to "
-                       "identify");
-    }
-    const auto factors = estimator_averaging_factors(Estimator::oadev, grid, rate, phase.size());
-    const auto points = oadev(phase, tau0_s, factors);
-    result = fit::fit_allan(points, phase.size(), tau0_s, options);
-    result.summary.warnings.insert(result.summary.warnings.begin(), warnings.begin(),
-                                   warnings.end());
+    record = load::finish_rates(std::move(record), std::move(values), {});
+    result = study::fit_channel(record, options, grid);
   }
-  if (result.summary.termination == fit::Termination::degenerate_input ||
-      result.summary.termination == fit::Termination::too_few_points) {
-    throw InputError("cannot fit a noise model: " + result.summary.message);
-  }
-  result.coefficients.quantity = info.rate_unit.quantity == Quantity::acceleration
-                                     ? Quantity::acceleration
-                                     : Quantity::angular_rate;
   nlohmann::json report = fit::report_json(info, options, result);
   report["spec_comparison"] =
       spec ? comparison_json(compare(result.coefficients, *spec)) : nlohmann::json(nullptr);
-  const std::string text = report.dump();
-  return py::module_::import("json").attr("loads")(text);
+  return to_python(report);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@
 #include "imunoise/nav/navigation.hpp"
 #include "imunoise/nav/report.hpp"
 #include "imunoise/units.hpp"
+#include "to_python.hpp"
 
 namespace py = pybind11;
 
@@ -96,8 +97,7 @@ py::object nav_call(double N, double B, double K, double Q, double R, double bia
     py::gil_scoped_release release;
     result = nav::navigation_error(o);
   }
-  const std::string text = nav::report_json(result).dump();
-  py::dict doc = py::module_::import("json").attr("loads")(text);
+  py::dict doc = to_python(nav::report_json(result));
   py::module_ np = py::module_::import("numpy");
   for (auto m : doc["models"]) {
     py::dict md = m.cast<py::dict>();

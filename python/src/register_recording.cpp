@@ -28,6 +28,7 @@
 #include "imunoise/study/curves.hpp"
 #include "imunoise/tau_grid.hpp"
 #include "preprocessing.hpp"
+#include "to_python.hpp"
 
 namespace py = pybind11;
 
@@ -163,7 +164,7 @@ py::object dev(const Array& data, const py::object& rate, const py::object& esti
     for (auto& object : array) add_provenance(prepared, fit::FitOptions{}, object);
     document = array.size() == 1 ? array[0] : array;
   }
-  return py::module_::import("json").attr("loads")(document.dump());
+  return to_python(document);
 }
 
 }  // namespace

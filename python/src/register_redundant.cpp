@@ -19,6 +19,7 @@
 #include "imunoise/redundant/report.hpp"
 #include "imunoise/redundant/sensor_fit.hpp"
 #include "imunoise/units.hpp"
+#include "to_python.hpp"
 
 namespace py = pybind11;
 
@@ -26,10 +27,6 @@ namespace imunoise::python {
 namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-py::object to_python(const nlohmann::json& j) {
-  return py::module_::import("json").attr("loads")(j.dump());
-}
 
 // Each fit is a dict (imunoise.fit's result) or a path to a JSON file of `imunoise fit`.
 std::vector<redundant::SensorModel> models_of(const py::object& fits, Unit& unit) {

@@ -29,6 +29,8 @@
 #include "imunoise/units.hpp"
 
 #include "preprocessing.hpp"
+#include "imunoise/load/load.hpp"
+#include "to_python.hpp"
 
 namespace py = pybind11;
 
@@ -36,11 +38,6 @@ namespace imunoise::python {
 namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-// The offset removed before integration, as the command line removes it (input_options.cpp):
-// the mean of the first 2^20 samples. A constant rate cancels in every estimator; matching
-// the CLI keeps the document identical to report.json for the same samples.
-constexpr std::size_t kOffsetSamples = std::size_t{1} << 20;
 
 // A comma string or a list of strings; empty when None.
 std::vector<std::string> string_list(const py::object& value, const char* what) {
@@ -95,8 +92,8 @@ std::vector<std::vector<double>> channel_columns(const py::object& channels) {
   return out;
 }
 
-// The record of one channel of rate samples in `units` ("" : not given), as load_phase builds
-// it from a file: samples to SI, offset removed, integrated into the phase.
+// The record of one channel of rate samples in `units` ("" : not given), as the loader builds
+// it from a file (load::finish_rates): samples to SI, offset removed, integrated into the phase.
 study::Record make_record(std::vector<double> rate, double rate_hz, const std::string& units,
                           std::string name, std::string source) {
   study::Record r;
@@ -112,14 +109,7 @@ study::Record make_record(std::vector<double> rate, double rate_hz, const std::s
   r.unit_given = !units.empty();
   r.rate_unit = rate_unit_of(units);
   scale_to_si(rate, r.rate_unit);
-  const std::span<const double> values(rate);
-  const double offset = compensated_mean(values.first(std::min(values.size(), kOffsetSamples)));
-  r.phase_si = phase_from_rate(values, 1.0 / rate_hz, offset);
-  if (const std::size_t k = first_non_finite(r.phase_si); k < r.phase_si.size()) {
-    throw InputError(r.name + ": the integral of the samples overflows at sample " + std::to_string(k) +
-                     "; check units");
-  }
-  return r;
+  return load::finish_rates(std::move(r), std::move(rate), {});
 }
 
 py::object analyze(const py::object& channels, double rate, const py::object& units,
@@ -172,7 +162,7 @@ py::object analyze(const py::object& channels, double rate, const py::object& un
     const study::Study result = study::run_study(std::move(records), so, std::move(failed));
     doc = study::study_json(result);
   }
-  py::object out = py::module_::import("json").attr("loads")(doc.dump());
+  py::object out = to_python(doc);
   if (!output_dir.is_none()) {
     const std::string dir = py::str(output_dir).cast<std::string>();
     study::WrittenReport written;

@@ -1119,23 +1119,4 @@ bool is_constant_record(std::span<const double> phase_si, double tau0_s) {
   return !(hi - lo > 1e-9 * std::max(std::abs(lo), std::abs(hi)));
 }
 
-FitResult fit_record(std::span<const double> phase_si, double tau0_s, const FitOptions& options) {
-  const std::size_t n = phase_si.size();
-  const auto warnings = record_warnings(phase_si, tau0_s);
-  if (is_constant_record(phase_si, tau0_s)) {
-    // The curve would be rounding noise: report, do not fit it (a zero curve gives the
-    // degenerate_input status and its message).
-    const DevPoint zero{1, tau0_s, 0.0};
-    FitResult r = fit_allan(std::span<const DevPoint>(&zero, 1), n, tau0_s, options);
-    r.summary.warnings = warnings;
-    return r;
-  }
-  std::vector<std::size_t> factors;
-  for (std::size_t m = 1; 2 * m < n; m *= 2) factors.push_back(m);
-  const auto points = oadev(phase_si, tau0_s, factors);
-  FitResult result = fit_allan(points, n, tau0_s, options);
-  result.summary.warnings.insert(result.summary.warnings.begin(), warnings.begin(), warnings.end());
-  return result;
-}
-
 }  // namespace imunoise::fit

@@ -216,7 +216,7 @@ std::string curves_table(const Record& record, const std::vector<Curve>& curves,
                        t.rate_hz, t.median_dt_s, 100 * t.jitter_rel_std, 100 * t.jitter_rel_max,
                        t.gaps.size(), t.missing_samples);
   }
-  for (const auto& line : record.table_notes) out += "# " + line + "\n";
+  for (const auto& line : table_notes(record)) out += "# " + line + "\n";
   for (const auto& curve : curves) {
     const std::string bounds = curve.confidence.empty() &&
                                        !(curve.points.size() && std::isfinite(curve.points[0].ci_low))

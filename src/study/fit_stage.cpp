@@ -22,6 +22,21 @@ fit::RecordInfo record_info(const Record& record) {
           is_gyro(record)};
 }
 
+fit::FitResult fit_curve(const Record& record, std::span<const DevPoint> oadev_points, std::size_t n_phase,
+                         const fit::FitOptions& options, const std::vector<std::string>& warnings) {
+  const double tau0_s = 1.0 / record.rate_hz;
+  fit::FitResult result = fit::fit_allan(oadev_points, n_phase, tau0_s, options);
+  result.summary.warnings.insert(result.summary.warnings.begin(), warnings.begin(), warnings.end());
+  if (result.summary.termination == fit::Termination::degenerate_input ||
+      result.summary.termination == fit::Termination::too_few_points) {
+    throw InputError(record.source + ": cannot fit a noise model: " + result.summary.message);
+  }
+  result.coefficients.quantity = record.rate_unit.quantity == Quantity::acceleration
+                                     ? Quantity::acceleration
+                                     : Quantity::angular_rate;
+  return result;
+}
+
 fit::FitResult fit_channel(const Record& record, const fit::FitOptions& options,
                            const TauGrid& grid) {
   const double tau0_s = 1.0 / record.rate_hz;
@@ -49,16 +64,7 @@ fit::FitResult fit_channel(const Record& record, const fit::FitOptions& options,
   } else {
     points = oadev(record.phase_si, tau0_s, factors);
   }
-  fit::FitResult result = fit::fit_allan(points, n_phase, tau0_s, options);
-  result.summary.warnings.insert(result.summary.warnings.begin(), warnings.begin(), warnings.end());
-  if (result.summary.termination == fit::Termination::degenerate_input ||
-      result.summary.termination == fit::Termination::too_few_points) {
-    throw InputError(record.source + ": cannot fit a noise model: " + result.summary.message);
-  }
-  result.coefficients.quantity = record.rate_unit.quantity == Quantity::acceleration
-                                     ? Quantity::acceleration
-                                     : Quantity::angular_rate;
-  return result;
+  return fit_curve(record, points, n_phase, options, warnings);
 }
 
 std::string fit_table(const Record& record, const fit::FitOptions& options,

@@ -403,6 +403,16 @@ Study run_study(std::vector<Record> records, const StudyOptions& options,
   std::string why;
   if (!options.fit.IsValid(&why)) throw InputError("fit options: " + why);
   if (!(options.nav_hours > 0.0)) throw InputError("--nav-hours must be positive");
+  if (!options.geometry.empty()) {
+    // One channel per sensor of the unit, or the fusion is meaningless: say so before the work.
+    const auto geometry = redundant::make_geometry(options.geometry);
+    const std::size_t given = records.size() + failed.size();
+    if (given != geometry.size()) {
+      throw InputError(fmt::format("--geometry {}: the unit has {} sensors but {} channel(s) were given; "
+                                   "fix: give one gyro channel per sensor, in the geometry's order, "
+                                   "or drop --geometry", options.geometry, geometry.size(), given));
+    }
+  }
   Study study;
   study.options = options;
   study.failed_inputs = std::move(failed);
@@ -498,6 +508,12 @@ nlohmann::json study_json(const Study& study) {
                      {"n_samples", rec.n_samples},
                      {"duration_s", static_cast<double>(rec.n_samples) / rec.rate_hz}};
     if (!ch.error.empty()) c["error"] = ch.error;
+    // Where the channel came from and what preprocessing removed, when there is more to say
+    // than the source.
+    if (!rec.channel.empty()) {
+      c["recording"] = {{"format", rec.format}, {"stream", rec.stream}, {"channel", rec.channel}};
+    }
+    if (!rec.preprocessing.empty()) c["preprocessing"] = rec.preprocessing;
     c["curves"] = curves_json(rec, ch.curves);
     if (ch.fit) {
       auto fit_doc = fit::report_json(record_info(rec), o.fit, *ch.fit);

@@ -171,7 +171,7 @@ TEST(FitExtraTerms, ShortWhiteNoiseRecordsRarelyKeepAnOptionalTerm) {
   const int records = 40;
   for (int seed = 1; seed <= records; ++seed) {
     const auto rate = sim::simulate(white, kRateHz, 4000, static_cast<std::uint64_t>(seed));
-    const auto r = fit::fit_record(phase_from_rate(rate, kTau0, 0.0), kTau0, o);
+    const auto r = fit_test::fit_phase(phase_from_rate(rate, kTau0, 0.0), kTau0, o);
     kept_gm += r.extras.gauss_markov.selected;
     kept_sin += r.extras.sinusoid.selected;
     if (r.extras.sinusoid.selected) {
@@ -201,7 +201,7 @@ TEST(FitAutoTerms, RejectedModelWithBumpsGetsThemAndOnlyThen) {
   model.gm_time_s = 30.0;
   const auto n = static_cast<std::size_t>(1800.0 * kRateHz);
   const auto phase = phase_from_rate(sim::simulate(model, kRateHz, n, 21), kTau0, 0.0);
-  const auto r = fit::fit_record(phase, kTau0);
+  const auto r = fit_test::fit_phase(phase, kTau0);
   ASSERT_TRUE(r.extras.automatic) << r.summary.FullReport();
   ASSERT_TRUE(r.extras.sinusoid.selected && r.extras.gauss_markov.selected) << r.summary.FullReport();
   const auto& sin = *r.coefficients.sinusoid;
@@ -227,12 +227,12 @@ TEST(FitAutoTerms, RejectedModelWithBumpsGetsThemAndOnlyThen) {
               gm.correlation_time_s.ci_high, r.coefficients.random_walk.value / kN);
   fit::FitOptions off;
   off.auto_extra_terms = false;
-  const auto plain = fit::fit_record(phase, kTau0, off);
+  const auto plain = fit_test::fit_phase(phase, kTau0, off);
   EXPECT_FALSE(plain.extras.automatic);
   EXPECT_FALSE(plain.coefficients.sinusoid.has_value());
   EXPECT_GT(plain.summary.mismatch_scatter, 0.0);  // the power laws alone are rejected
   // A record the power laws describe is left alone (no mismatch, nothing tried).
-  const auto clean = fit::fit_record(tg100_phase(0.5, 3), kTau0);
+  const auto clean = fit_test::fit_phase(tg100_phase(0.5, 3), kTau0);
   EXPECT_FALSE(clean.extras.automatic);
   EXPECT_EQ(clean.summary.mismatch_scatter, 0.0);
 }
@@ -292,7 +292,7 @@ TEST(SlowExtraTerms, GaussMarkovIsFoundWhereItIsAndNotWhereItIsNot) {
       const auto seed = static_cast<std::uint64_t>(run + 1 + (present ? 0 : 100000));
       const auto phase = gm_phase(present ? sigma : 0.0, tc, 1.0, seed);
       const auto t0 = std::chrono::steady_clock::now();
-      const auto r = fit::fit_record(phase, kTau0, o);
+      const auto r = fit_test::fit_phase(phase, kTau0, o);
       seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
       Tally& t = present ? with : without;
       ++t.runs;
@@ -363,7 +363,7 @@ TEST(SlowExtraTerms, SinusoidIsFoundWhereItIsAndNotWhereItIsNot) {
       const auto n = static_cast<std::size_t>(3600.0 * kRateHz);
       const auto seed = static_cast<std::uint64_t>(run + 1 + (present ? 200000 : 300000));
       const auto phase = phase_from_rate(sim::simulate(model, kRateHz, n, seed), kTau0, 0.0);
-      const auto r = fit::fit_record(phase, kTau0, o);
+      const auto r = fit_test::fit_phase(phase, kTau0, o);
       ASSERT_TRUE(r.coefficients.sinusoid.has_value());
       const auto& sin = *r.coefficients.sinusoid;
       if (present) {

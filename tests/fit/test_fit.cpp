@@ -95,7 +95,7 @@ TEST(Fit, TwoHourRecordDoesNotClaimAConfidentK) {
   int contained = 0;
   for (std::uint64_t seed = 1; seed <= 10; ++seed) {
     const auto phase = tg100_phase(2.0, seed);
-    const auto r = fit::fit_record(phase, 1.0 / kRateHz);
+    const auto r = fit_test::fit_phase(phase, 1.0 / kRateHz);
     const auto& k = r.coefficients.rate_random_walk;
     EXPECT_TRUE(std::isfinite(k.ci_high));
     if (k.identified) {
@@ -118,13 +118,13 @@ TEST(Fit, TwoHourRecordDoesNotClaimAConfidentK) {
 TEST(Fit, AllZeroAndConstantDataAreReportedNotFitted) {
   std::vector<double> phase(20000);
   for (std::size_t i = 0; i < phase.size(); ++i) phase[i] = 0.3 * static_cast<double>(i);  // constant rate
-  const auto r = fit::fit_record(phase, 0.01);
+  const auto r = fit_test::fit_phase(phase, 0.01);
   EXPECT_EQ(r.summary.termination, fit::Termination::degenerate_input);
   EXPECT_FALSE(r.coefficients.random_walk.identified);
   EXPECT_EQ(r.coefficients.random_walk.value, 0.0);
   EXPECT_NE(r.summary.message.find("zero"), std::string::npos);
   const std::vector<double> zeros(20000, 0.0);
-  EXPECT_EQ(fit::fit_record(zeros, 0.01).summary.termination, fit::Termination::degenerate_input);
+  EXPECT_EQ(fit_test::fit_phase(zeros, 0.01).summary.termination, fit::Termination::degenerate_input);
 }
 
 TEST(Fit, TooFewTausIsAStatusNotANumber) {
@@ -134,7 +134,7 @@ TEST(Fit, TooFewTausIsAStatusNotANumber) {
   EXPECT_EQ(r.summary.termination, fit::Termination::too_few_points);
   EXPECT_NE(r.summary.message.find("too few"), std::string::npos);
   EXPECT_FALSE(r.coefficients.random_walk.identified);
-  EXPECT_THROW(fit::fit_record(std::vector<double>(3, 0.0), 0.01), InputError);
+  EXPECT_THROW(fit_test::fit_phase(std::vector<double>(3, 0.0), 0.01), InputError);
 }
 
 TEST(Fit, NegativeOlsCoefficientIsNotIdentifiedAndHasNoNan) {
@@ -236,7 +236,7 @@ TEST(FitSamplingChain, FilteredShortTausAreLeftOutAndNRecovered) {
 
 TEST(FitSamplingChain, UnfilteredRecordKeepsEveryTauAndNeedsNoScatter) {
   const auto phase = tg100_phase(0.5, 12);
-  const auto r = fit::fit_record(phase, 1.0 / kRateHz);
+  const auto r = fit_test::fit_phase(phase, 1.0 / kRateHz);
   EXPECT_TRUE(r.summary.excluded_taus.empty());
   EXPECT_EQ(r.summary.mismatch_scatter, 0.0);
   for (const auto& p : r.residuals) EXPECT_TRUE(p.used);
@@ -247,7 +247,7 @@ TEST(FitTauRange, TauMinAndMaxLimitTheFittedTaus) {
   fit::FitOptions o;
   o.tau_min_s = 0.04;
   o.tau_max_s = 200.0;
-  const auto r = fit::fit_record(phase, 1.0 / kRateHz, o);
+  const auto r = fit_test::fit_phase(phase, 1.0 / kRateHz, o);
   ASSERT_FALSE(r.summary.excluded_taus.empty());
   for (const auto& e : r.summary.excluded_taus) {
     EXPECT_EQ(e.reason, "tau_range");
@@ -263,13 +263,13 @@ TEST(FitTauRange, BadRangesAreRejected) {
   fit::FitOptions o;
   o.tau_min_s = 10.0;
   o.tau_max_s = 1.0;
-  EXPECT_THROW((void)fit::fit_record(phase, 1.0 / kRateHz, o), InputError);
+  EXPECT_THROW((void)fit_test::fit_phase(phase, 1.0 / kRateHz, o), InputError);
   o.tau_min_s = -1.0;
   o.tau_max_s = 0.0;
-  EXPECT_THROW((void)fit::fit_record(phase, 1.0 / kRateHz, o), InputError);
+  EXPECT_THROW((void)fit_test::fit_phase(phase, 1.0 / kRateHz, o), InputError);
   // A range that leaves too few taus: reported, not a crash.
   o.tau_min_s = 1e6;
-  const auto r = fit::fit_record(phase, 1.0 / kRateHz, o);
+  const auto r = fit_test::fit_phase(phase, 1.0 / kRateHz, o);
   EXPECT_EQ(r.summary.termination, fit::Termination::too_few_points);
 }
 

@@ -330,6 +330,77 @@ TEST_F(Containers, CliReadsBagMcapAndHdf5AndExitsOneOnAWrongTopic) {
   EXPECT_NE(units.err.find("drop --units"), std::string::npos) << units.err;
 }
 
+// Every command that reads a file binds the loader's options with one binder and loads through
+// the one loader: each of them reads each format. Gyro channel of each file, its options.
+struct FormatCase {
+  std::string label;
+  std::string file;
+  std::vector<std::string> options;  ///< how to read it (topic, dataset, rate, units)
+  std::string column;
+};
+
+std::vector<FormatCase> format_cases(const test::TempDir& dir, const fs::path& bag, const fs::path& mcap,
+                                     const fs::path& h5) {
+  std::mt19937_64 rng(23);
+  std::normal_distribution<double> noise(0.0, 1e-3);
+  std::string csv = "t,gx,gy\n";
+  std::string euroc = "#timestamp [ns],w_RS_S_x [rad s^-1],w_RS_S_y [rad s^-1],w_RS_S_z [rad s^-1],"
+                      "a_RS_S_x [m s^-2],a_RS_S_y [m s^-2],a_RS_S_z [m s^-2]\n";
+  std::vector<double> f64;
+  char line[256];
+  for (int i = 0; i < 1500; ++i) {
+    const double gx = noise(rng), gy = noise(rng);
+    std::snprintf(line, sizeof line, "%.3f,%.17g,%.17g\n", i / 200.0, gx, gy);
+    csv += line;
+    std::snprintf(line, sizeof line, "%lld,%.17g,%.17g,%.17g,0.1,0.2,9.81\n",
+                  1403636579758555392LL + 5000000LL * i, gx, gy, noise(rng));
+    euroc += line;
+    f64.push_back(gx);
+  }
+  const fs::path raw = dir.path() / "gyro.f64";
+  std::ofstream(raw, std::ios::binary).write(reinterpret_cast<const char*>(f64.data()),
+                                             static_cast<std::streamsize>(f64.size() * sizeof(double)));
+  fs::create_directories(dir.path() / "mav0" / "imu0");
+  return {
+      {"text", dir.write("gyro.csv", csv).string(), {"--units", "rad/s"}, "gx"},
+      {"binary", raw.string(), {"--rate", "200", "--units", "rad/s"}, "0"},
+      {"bag", bag.string(), {"--topic", "/imu/data"}, "gyro_x"},
+      {"mcap", mcap.string(), {"--topic", "/imu"}, "gyro_x"},
+      {"hdf5", h5.string(), {"--dataset", "/imu/gyro", "--time-dataset", "/imu/time", "--units", "rad/s"}, "0"},
+      {"euroc", dir.write("mav0/imu0/data.csv", euroc).string(), {}, "gyro_x"},
+  };
+}
+
+std::vector<std::string> joined(std::vector<std::string> a, const std::vector<std::string>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+TEST_F(Containers, EveryCommandReadsEveryFormatThroughTheOneLoader) {
+  REQUIRE(have_bag_ && have_mcap_ && have_h5_, "writers not available");
+  test::TempDir out;
+  const auto cases = format_cases(out, file("imu_lz4.bag"), file("imu_zstd_summary.mcap"), file("imu.h5"));
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.label);
+    const auto dev = run_cli(joined({"dev", c.file, "--column", c.column, "--no-ci"}, c.options), out);
+    EXPECT_EQ(dev.exit_code, 0) << dev.err;
+    const auto fit = run_cli(joined({"fit", c.file, "--column", c.column, "--format", "table"}, c.options), out);
+    EXPECT_EQ(fit.exit_code, 0) << fit.err;
+    EXPECT_NE(fit.out.find("rad/s"), std::string::npos) << fit.out;
+    const auto analyze = run_cli(joined({"analyze", c.file, "--columns", c.column, "-q", "-o",
+                                         (out.path() / ("analyze-" + c.label)).string()}, c.options), out);
+    EXPECT_EQ(analyze.exit_code, 0) << analyze.err;
+    EXPECT_TRUE(fs::exists(out.path() / ("analyze-" + c.label) / "report.json"));
+    const auto fleet = run_cli(joined({"fleet", c.file, c.file, "--column", c.column, "-q", "-o",
+                                       (out.path() / ("fleet-" + c.label)).string()}, c.options), out);
+    EXPECT_EQ(fleet.exit_code, 0) << fleet.err;
+    EXPECT_NE(fleet.out.find("2 analysed, 0 failed"), std::string::npos) << fleet.out << fleet.err;
+    const auto fuse = run_cli(joined({"redundant", "--geometry", "tetra", "--fuse", c.file, c.file, c.file,
+                                      c.file, "--column", c.column, "--format", "table"}, c.options), out);
+    EXPECT_EQ(fuse.exit_code, 0) << fuse.err;
+  }
+}
+
 }  // namespace
 }  // namespace imunoise::io
 

@@ -239,11 +239,6 @@ std::vector<std::string> record_warnings(std::span<const double> phase_si, doubl
 /// data included: its Allan curve would be rounding noise, which must not be fitted.
 bool is_constant_record(std::span<const double> phase_si, double tau0_s);
 
-/// Convenience: computes the oadev curve of `phase_si` (angle samples spaced tau0_s) on the
-/// octave grid, checks the record (all-zero, constant, quantized, saturated) and fits.
-FitResult fit_record(std::span<const double> phase_si, double tau0_s,
-                     const FitOptions& options = {});
-
 /// Covariance matrix (row-major, size k x k) of the overlapping Allan variance estimates at
 /// averaging factors m_list (n_phase phase samples, spacing tau0_s) for a Gaussian process
 /// with the model theta (Q^2, N^2, B^2, K^2, R^2). A rate ramp is deterministic and would add

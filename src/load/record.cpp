@@ -1,6 +1,6 @@
-#include "imunoise/study/record.hpp"
+#include "imunoise/load/record.hpp"
 
-namespace imunoise::study {
+namespace imunoise {
 
 std::string unit_label(const Record& record, bool integrated) {
   if (!record.unit_given) {
@@ -15,4 +15,14 @@ bool is_gyro(const Record& record) {
   return record.unit_given && record.rate_unit.quantity == Quantity::angular_rate;
 }
 
-}  // namespace imunoise::study
+std::vector<std::string> table_notes(const Record& record) {
+  std::vector<std::string> notes;
+  if (!record.channel.empty()) {
+    notes.push_back(record.format + ": " + (record.stream.empty() ? "" : record.stream + " ") +
+                    "channel " + record.channel);
+  }
+  for (const auto& line : record.preprocessing) notes.push_back("preprocessing: " + line);
+  return notes;
+}
+
+}  // namespace imunoise

@@ -1,0 +1,41 @@
+#pragma once
+// The study of one sensor record in one call, for callers that study records one at a time
+// (the fleet, a file per sensor): the noise-model fit (fit_stage.hpp), the datasheet verdict
+// and, on request, the navigation error at the horizon (the same models as run_study).
+#include <optional>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "imunoise/fit/fit.hpp"
+#include "imunoise/spec/comparison.hpp"
+#include "imunoise/spec/spec.hpp"
+#include "imunoise/study/record.hpp"
+#include "imunoise/tau_grid.hpp"
+
+namespace imunoise::study {
+
+struct SensorOptions {
+  fit::FitOptions fit;
+  TauGrid grid;                 ///< tau grid of the fitted Allan curve (octave)
+  std::optional<Spec> spec;     ///< datasheet to compare with
+  bool nav = false;             ///< the navigation error at the horizon (gyros)
+  double nav_hours = 1.0;       ///< the horizon (h), the study's default
+};
+
+struct SensorStudy {
+  fit::FitResult fit;
+  std::optional<SpecComparison> comparison;
+  /// At the horizon only, {"t_s", "latitude_deg", "models": [{"model", "lat_deg", "path_m",
+  /// "lon_deg"}]}, or {"t_s", "error": why} when it cannot be computed; null when not asked.
+  nlohmann::json nav;
+};
+
+/// InputError naming the record when it cannot be fitted.
+SensorStudy study_sensor(const Record& record, const SensorOptions& options);
+
+/// The `imunoise fit` document of the sensor with "spec_comparison" (null without a spec) and,
+/// when computed, "nav".
+nlohmann::json sensor_json(const Record& record, const SensorOptions& options, const SensorStudy& study);
+
+}  // namespace imunoise::study

@@ -1,0 +1,596 @@
+#include "imunoise/load/load.hpp"
+
+#include <sys/mman.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+
+#include <fmt/core.h>
+
+#include "imunoise/error.hpp"
+#include "imunoise/finite.hpp"
+#include "imunoise/io/binary_reader.hpp"
+#include "imunoise/io/recording.hpp"
+#include "imunoise/io/text_reader.hpp"
+#include "imunoise/load/integrate.hpp"
+#include "imunoise/phase.hpp"
+
+namespace imunoise::load {
+namespace {
+
+std::string source_name(const std::string& file) {
+  return file == "-" ? "standard input" : file;
+}
+
+// A neutral unit for records whose unit was not given: no conversion, labelled at the edges.
+Unit unit_of(const LoadOptions& options, InputKind kind, bool& given) {
+  given = !options.units.empty();
+  if (!given) return Unit{"input unit", kind == InputKind::rate ? Quantity::dimensionless : Quantity::time, 1.0};
+  Unit unit = parse_unit(options.units);
+  if (kind == InputKind::rate) {
+    if (unit.quantity == Quantity::angle || unit.quantity == Quantity::time) {
+      throw InputError("--units " + options.units + " is an angle or time unit but --input is rate; " +
+                       "pass --input angle, or a rate unit such as deg/s");
+    }
+    return unit;
+  }
+  if (unit.quantity != Quantity::angle && unit.quantity != Quantity::velocity &&
+      unit.quantity != Quantity::time) {
+    throw InputError("--units " + options.units + " is not an angle unit but --input is angle; " +
+                     "pass --input rate, or an angle unit such as deg or rad");
+  }
+  return unit;
+}
+
+double value_scale(const LoadOptions& options) {
+  if (!std::isfinite(options.scale) || options.scale == 0.0) {
+    throw InputError("--scale must be finite and non-zero, got " + fmt::format("{}", options.scale));
+  }
+  if (options.sensitivity != 0.0) {
+    if (!std::isfinite(options.sensitivity)) throw InputError("--sensitivity must be finite");
+    return options.scale / options.sensitivity;
+  }
+  return options.scale;
+}
+
+// Reserves room for the whole phase array and asks for transparent huge pages on it: a
+// 1e8-sample record is 800 MB, and with 4 KB pages its first touch costs 200 000 page faults.
+void reserve_phase(std::vector<double>& phase, std::size_t count) {
+  phase.reserve(count);
+  constexpr std::uintptr_t huge = std::uintptr_t{2} << 20;
+  const auto begin = (reinterpret_cast<std::uintptr_t>(phase.data()) + huge - 1) & ~(huge - 1);
+  const auto end = (reinterpret_cast<std::uintptr_t>(phase.data() + count)) & ~(huge - 1);
+  if (end > begin) ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
+}
+
+bool is_binary(const LoadOptions& options) {
+  return !options.binary.empty() ||
+         (options.file != "-" && io::binary_format_from_extension(options.file).has_value());
+}
+
+io::BinaryReadOptions binary_options(const LoadOptions& options) {
+  io::BinaryReadOptions read;
+  if (!options.binary.empty()) {
+    read.format = io::parse_binary_format(options.binary);
+  } else {
+    read.format = *io::binary_format_from_extension(options.file);
+  }
+  read.channels = options.channels;
+  if (!options.column.empty()) {
+    const auto selector = io::parse_column_selector(options.column);
+    if (!std::holds_alternative<std::size_t>(selector)) {
+      throw InputError("--column must be a channel index (0-based) for binary input, got '" +
+                       options.column + "'");
+    }
+    read.column = std::get<std::size_t>(selector);
+  }
+  return read;
+}
+
+// Sample rates outside this range are a typo or a unit mix-up (Hz vs kHz vs period), not a sensor.
+constexpr double kMinRateHz = 1e-6;
+constexpr double kMaxRateHz = 1e9;
+
+void require_rate(double rate_hz, const std::string& source) {
+  if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) {
+    throw InputError(source + ": the sample rate must be positive and finite, got " +
+                     fmt::format("{}", rate_hz) + " Hz; pass --rate HZ or --time-column");
+  }
+  if (rate_hz < kMinRateHz || rate_hz > kMaxRateHz) {
+    throw InputError(source + ": a sample rate of " + fmt::format("{}", rate_hz) +
+                     " Hz is outside " + fmt::format("{:g}..{:g}", kMinRateHz, kMaxRateHz) +
+                     " Hz; --rate is in Hz (samples per second)");
+  }
+}
+
+// Values so large that their running integral overflows cannot be analysed; say so instead of
+// printing NaN.
+void require_finite_phase(const Record& record) {
+  if (const std::size_t k = first_non_finite(record.phase_si, 0); k < record.phase_si.size()) {
+    throw InputError(record.source + ": the integral of the samples overflows at sample " +
+                     std::to_string(k) + "; check --units, --scale and --sensitivity");
+  }
+}
+
+// Rate or angle samples (already in SI) into the record's phase array.
+void integrate_into(Record& record, std::span<const double> values_si) {
+  if (record.kind == InputKind::angle) {
+    record.phase_si.assign(values_si.begin(), values_si.end());
+    return;
+  }
+  record.phase_si = integrate_rate(values_si, record.rate_hz);
+}
+
+// Timestamps checked as by io::check_timing, after refusing a record whose sample rate changes:
+// if more than 5 % of the intervals are off the median by over 1.5 x, the samples are not one rate with some dropped,
+// and neither --allow-gaps nor --gaps split can make one equally spaced record of them.
+io::TimingReport checked_timing(std::span<const double> time_s, const std::string& source,
+                                const io::LineMap* lines, bool allow_gaps) {
+  const io::TimingReport report = io::analyze_timing(time_s, source, lines);
+  // Off-rate intervals: gaps (> 1.5 median) and intervals shorter than median / 1.5 (a faster
+  // stretch when the median is the slower rate).
+  std::size_t off_rate = report.gaps.size();
+  for (std::size_t i = 1; i < time_s.size(); ++i) {
+    const double dt = time_s[i] - time_s[i - 1];
+    if (dt > 0.0 && dt * 1.5 < report.median_dt_s) ++off_rate;
+  }
+  if (off_rate > 10 && off_rate * 20 > report.n_samples) {
+    auto rate_of = [&](std::size_t begin, std::size_t end) {
+      std::vector<double> dt;
+      for (std::size_t i = begin + 1; i < end; ++i) dt.push_back(time_s[i] - time_s[i - 1]);
+      std::nth_element(dt.begin(), dt.begin() + static_cast<std::ptrdiff_t>(dt.size() / 2), dt.end());
+      return 1.0 / dt[dt.size() / 2];
+    };
+    const std::size_t tenth = std::max<std::size_t>(time_s.size() / 10, 2);
+    throw InputError(fmt::format(
+        "{}: mixed sample rates: {} of {} intervals differ from the median {:.6g} s by more than 1.5 x "
+        "({:.6g} Hz over the first tenth of the record, {:.6g} Hz over the last); fix: analyse each "
+        "rate separately (split the file where the rate changes); imunoise never resamples",
+        source, off_rate, report.n_samples - 1, report.median_dt_s, rate_of(0, tenth),
+        rate_of(time_s.size() - tenth, time_s.size())));
+  }
+  return io::check_timing(time_s, source, lines, allow_gaps);
+}
+
+bool wants_preprocessing(const LoadOptions& options) {
+  return preprocess::wants_preprocessing(pipeline_options(options));
+}
+
+std::vector<std::size_t> gap_breaks(const LoadOptions& options, const Record& record) {
+  std::vector<std::size_t> breaks;
+  if (options.gaps == "split" && record.timing) {
+    for (const auto& g : record.timing->gaps) breaks.push_back(g.index);
+  }
+  return breaks;
+}
+
+bool gaps_allowed(const LoadOptions& options) {
+  if (!options.gaps.empty() && options.gaps != "fail" && options.gaps != "split") {
+    throw InputError("--gaps " + options.gaps + " is not known; fix: pass fail or split");
+  }
+  if (options.gaps == "split" && options.allow_gaps) {
+    throw InputError("--gaps split and --allow-gaps contradict each other; fix: drop one");
+  }
+  return options.allow_gaps || options.gaps == "split";
+}
+
+void load_binary(const LoadOptions& options, Record& record, double to_si) {
+  if (!options.time_column.empty()) {
+    throw InputError("--time-column is for text input; binary input needs --rate");
+  }
+  require_rate(record.rate_hz, record.source);
+  const auto read = binary_options(options);
+  if (wants_preprocessing(options) || options.keep_rates) {
+    // Preprocessing needs the whole record (median, fits): read it all instead of streaming.
+    if (options.gaps == "split") throw InputError(record.source + ": --gaps split needs timestamps; binary input has none");
+    auto values = options.file == "-" ? io::read_binary_stream(std::cin, record.source, read)
+                                      : io::read_binary_file(options.file, read);
+    for (auto& v : values) v *= to_si;
+    record = finish_rates(std::move(record), std::move(values), pipeline_options(options), {}, {},
+                          options.keep_rates);
+    return;
+  }
+  std::unique_ptr<io::BinaryReader> reader;
+  if (options.file == "-") {
+    reader = std::make_unique<io::BinaryReader>(std::cin, record.source, read);
+  } else {
+    reader = std::make_unique<io::BinaryReader>(options.file, read);
+  }
+  std::vector<double> chunk(kRateOffsetSamples);
+  std::size_t got = reader->read(chunk);
+  chunk.resize(got);
+  for (auto& v : chunk) v *= to_si;
+  if (record.kind == InputKind::angle) {
+    // Angle input: samples are used as they are.
+    if (const auto count = reader->record_count()) reserve_phase(record.phase_si, *count);
+    record.phase_si.insert(record.phase_si.end(), chunk.begin(), chunk.end());
+    chunk.resize(kRateOffsetSamples);
+    while ((got = reader->read(chunk)) > 0) {
+      for (std::size_t i = 0; i < got; ++i) record.phase_si.push_back(chunk[i] * to_si);
+    }
+    record.n_samples = record.phase_si.size();
+    return;
+  }
+  if (const auto count = reader->record_count()) reserve_phase(record.phase_si, *count + 1);
+  PhaseIntegrator integrator(1.0 / record.rate_hz, rate_offset(chunk));
+  std::size_t n = chunk.size();
+  integrator.push(chunk, record.phase_si);
+  chunk.resize(kRateOffsetSamples);
+  while ((got = reader->read(chunk)) > 0) {
+    for (std::size_t i = 0; i < got; ++i) chunk[i] *= to_si;
+    integrator.push(std::span(chunk).first(got), record.phase_si);
+    n += got;
+  }
+  record.n_samples = n;
+}
+
+void load_text(const LoadOptions& options, Record& record, double to_si) {
+  io::TextReadOptions read;
+  if (!options.column.empty()) read.column = io::parse_column_selector(options.column);
+  if (!options.time_column.empty()) read.time_column = io::parse_column_selector(options.time_column);
+  io::TextColumns columns = options.file == "-"
+                                ? io::read_text_stream(std::cin, record.source, read)
+                                : io::read_text_file(options.file, read);
+  if (read.time_column) {
+    record.timing = checked_timing(columns.time_s, record.source, &columns.lines, gaps_allowed(options));
+    if (record.rate_hz > 0 && std::abs(record.timing->rate_hz / record.rate_hz - 1.0) > 0.01) {
+      throw InputError(record.source + ": --rate " + fmt::format("{}", record.rate_hz) +
+                       " Hz disagrees with the time column (" +
+                       fmt::format("{:.6g}", record.timing->rate_hz) +
+                       " Hz from the median interval); drop --rate or fix the time column");
+    }
+    if (record.rate_hz <= 0) record.rate_hz = record.timing->rate_hz;
+  }
+  require_rate(record.rate_hz, record.source);
+  for (auto& v : columns.values) v *= to_si;
+  std::vector<double> temperature;
+  if (!options.temperature.empty()) {
+    if (options.file == "-") throw InputError("--temperature needs a file, not standard input");
+    io::TextReadOptions t;
+    t.column = io::parse_column_selector(options.temperature);
+    temperature = io::read_text_file(options.file, t).values;
+  }
+  const auto breaks = gap_breaks(options, record);
+  record = finish_rates(std::move(record), std::move(columns.values), pipeline_options(options), breaks,
+                        std::move(temperature), options.keep_rates);
+}
+
+// A container recording (bag, MCAP, HDF5, EuRoC): one channel chosen by --column, its unit
+// from the file unless --units is given (and then they must agree), the rate from the
+// timestamps (checked like a text time column) or --rate.
+void load_container(const LoadOptions& options, Record& record) {
+  if (options.file == "-") throw InputError("--topic/--dataset need a file, not standard input");
+  if (!options.binary.empty()) throw InputError(record.source + ": --binary is for raw sample files; drop it");
+  if (!options.time_column.empty()) {
+    throw InputError(record.source + ": --time-column is for text files; this file's timestamps are read "
+                     "from the container (HDF5: --time-dataset)");
+  }
+  io::RecordingOptions read;
+  read.topic = options.topic;
+  read.dataset = options.dataset;
+  read.time_dataset = options.time_dataset;
+  const io::Recording recording = io::read_recording(options.file, read);
+  record.format = std::string(io::format_name(recording.format));
+  record.stream = recording.stream;
+  if (options.column.empty() && recording.channels.size() != 1) {
+    throw InputError(record.source + ": " + std::to_string(recording.channels.size()) +
+                     " channels (" + recording.channel_list() + "); choose one with --column NAME");
+  }
+  const io::Channel& channel =
+      options.column.empty() ? recording.channels.front() : recording.channel(options.column);
+  record.channel = channel.name;
+  Unit unit;
+  if (channel.unit && !options.units.empty()) {
+    unit = unit_of(options, record.kind, record.unit_given);
+    if (unit.name != channel.unit->name) {
+      throw InputError(record.source + ": channel " + channel.name + " is in " + channel.unit->name +
+                       " according to the file, but --units says " + options.units + "; drop --units");
+    }
+  } else if (channel.unit) {
+    if (record.kind != InputKind::rate) {
+      throw InputError(record.source + ": channel " + channel.name + " holds rates (" + channel.unit->name +
+                       "); drop --input angle");
+    }
+    unit = *channel.unit;
+    record.unit_given = true;
+  } else {
+    unit = unit_of(options, record.kind, record.unit_given);
+  }
+  record.rate_unit = record.kind == InputKind::rate || !record.unit_given ? unit : derivative_unit(unit);
+  if (!recording.time_s.empty()) {
+    record.timing = checked_timing(recording.time_s, record.source, nullptr, gaps_allowed(options));
+    if (record.rate_hz > 0 && std::abs(record.timing->rate_hz / record.rate_hz - 1.0) > 0.01) {
+      throw InputError(record.source + ": --rate " + fmt::format("{}", record.rate_hz) +
+                       " Hz disagrees with the file's timestamps (" +
+                       fmt::format("{:.6g}", record.timing->rate_hz) + " Hz from the median interval); drop --rate");
+    }
+    if (record.rate_hz <= 0) record.rate_hz = record.timing->rate_hz;
+  }
+  require_rate(record.rate_hz, record.source);
+  const double to_si = unit.to_si * value_scale(options);
+  std::vector<double> values(channel.values);
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    if (!std::isfinite(values[i])) {
+      throw InputError(record.source + ": channel " + channel.name + " sample " + std::to_string(i) +
+                       " is not finite (NaN or Inf); the analysis needs every sample");
+    }
+    values[i] *= to_si;
+  }
+  std::vector<double> temperature;
+  if (!options.temperature.empty()) temperature = recording.channel(options.temperature).values;
+  const auto breaks = gap_breaks(options, record);
+  record = finish_rates(std::move(record), std::move(values), pipeline_options(options), breaks,
+                        std::move(temperature), options.keep_rates);
+}
+
+bool is_container(const LoadOptions& options) {
+  if (!options.topic.empty() || !options.dataset.empty() || !options.time_dataset.empty()) return true;
+  if (options.file == "-" || !options.binary.empty()) return false;
+  return io::detect_container(options.file).has_value();
+}
+
+// The sample rate stated by the header of a text file written by `imunoise simulate`
+// ("# imunoise simulate ..." then "# rate_hz R ..."); 0 when the file is not one.
+double simulated_file_rate_hz(const std::string& path) {
+  std::ifstream in(path);
+  std::string first;
+  std::string second;
+  if (!std::getline(in, first) || first.rfind("# imunoise simulate", 0) != 0) return 0.0;
+  if (!std::getline(in, second) || second.rfind("# rate_hz ", 0) != 0) return 0.0;
+  try {
+    const double rate_hz = std::stod(second.substr(10));
+    return std::isfinite(rate_hz) && rate_hz > 0.0 ? rate_hz : 0.0;
+  } catch (const std::exception&) {
+    return 0.0;
+  }
+}
+
+
+// The fields of a text file's first non-comment line (its header, or its first row).
+std::vector<std::string> first_line_fields(const std::string& file) {
+  std::ifstream in(file);
+  if (!in) throw InputError(file + ": cannot open the file; check the path");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const auto first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '#') continue;
+    break;
+  }
+  if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
+  const auto hash = line.find('#');
+  if (hash != std::string::npos) line.erase(hash);
+  char sep = ' ';
+  if (line.find('\t') != std::string::npos) sep = '\t';
+  else if (line.find(';') != std::string::npos) sep = ';';
+  else if (line.find(',') != std::string::npos) sep = ',';
+  std::vector<std::string> fields;
+  std::string field;
+  auto flush = [&] {
+    auto b = field.find_first_not_of(" \t\"");
+    auto e = field.find_last_not_of(" \t\"");
+    fields.push_back(b == std::string::npos ? std::string() : field.substr(b, e - b + 1));
+    field.clear();
+  };
+  if (sep == ' ') {
+    for (char c : line) {
+      if (c == ' ' || c == '\t') {
+        if (!field.empty()) flush();
+      } else {
+        field += c;
+      }
+    }
+    if (!field.empty()) flush();
+  } else {
+    for (char c : line) {
+      if (c == sep) flush(); else field += c;
+    }
+    flush();
+  }
+  return fields;
+}
+
+// Header names that are timestamps, not sensor values (case-insensitive).
+bool is_time_name(std::string name) {
+  for (auto& c : name) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  for (const char* t : {"t", "t_s", "t_ns", "time", "time_s", "time_ns", "timestamp", "timestamp_s",
+                        "timestamp_ns", "stamp", "#timestamp", "#timestamp [ns]", "timestamp [ns]"}) {
+    if (name == t) return true;
+  }
+  return false;
+}
+
+// A header column named like a timestamp, when the first line of the text file is a header.
+std::optional<std::string> timestamp_column(const std::string& file) {
+  const auto fields = first_line_fields(file);
+  bool header = false;
+  for (const auto& f : fields) header = header || !io::parse_number(f).has_value();
+  if (!header) return std::nullopt;
+  for (const auto& f : fields) {
+    if (is_time_name(f)) return f;
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+preprocess::PipelineOptions pipeline_options(const LoadOptions& options) {
+  preprocess::PipelineOptions p;
+  p.skip = options.skip;
+  p.detrend = options.detrend;
+  p.outliers = options.outliers;
+  p.split_gaps = options.gaps == "split";
+  p.davar = options.davar;
+  p.davar_window_s = options.davar_window_s;
+  p.temperature = options.temperature;
+  p.temperature_bin = options.temperature_bin;
+  p.temperature_fit = options.temperature_fit;
+  return p;
+}
+
+Record finish_rates(Record record, std::vector<double> values, const preprocess::PipelineOptions& options,
+                    std::span<const std::size_t> gap_breaks, std::vector<double> temperature,
+                    bool keep_rates) {
+  if (preprocess::wants_preprocessing(options)) {
+    if (record.kind != InputKind::rate) {
+      throw InputError(record.source + ": --skip, --detrend, --outliers, --gaps split and --davar work on "
+                       "rate samples; fix: drop them, or pass rate input");
+    }
+    const std::string unit =
+        record.unit_given ? std::string(si_unit_name(record.rate_unit.quantity)) : "input unit";
+    auto result = preprocess::run_pipeline(options, std::move(values), record.rate_hz, gap_breaks,
+                                           std::move(temperature), record.source, unit);
+    record.preprocessing.insert(record.preprocessing.end(), result.notes.begin(), result.notes.end());
+    record.segments = std::move(result.segments);
+    record.davar = std::move(result.davar);
+    record.temperature_bins = std::move(result.temperature_bins);
+    values = std::move(result.values);
+  }
+  // A split record keeps its rates and segments for the pooled estimators; one segment is
+  // simply the record.
+  if (record.segments.size() > 1) {
+    record.n_samples = 0;
+    for (const auto& seg : record.segments) record.n_samples += seg.size();
+    record.rate_si = values;
+  } else {
+    if (record.segments.size() == 1) {
+      const auto seg = record.segments.front();
+      values = std::vector<double>(values.begin() + static_cast<std::ptrdiff_t>(seg.begin),
+                                   values.begin() + static_cast<std::ptrdiff_t>(seg.end));
+    }
+    record.segments.clear();
+    record.n_samples = values.size();
+    if (keep_rates) record.rate_si = values;
+  }
+  integrate_into(record, values);
+  require_finite_phase(record);
+  return record;
+}
+
+Record load(const LoadOptions& options) {
+  Record record;
+  record.source = source_name(options.file);
+  if (options.file != "-" && !std::filesystem::exists(options.file)) {
+    throw InputError(options.file + ": no such file; check the path");
+  }
+  record.kind = parse_input_kind(options.input);
+  record.rate_hz = options.rate_hz;
+  if (is_container(options)) {
+    load_container(options, record);
+    if (record.n_samples == 0) throw InputError(record.source + ": no samples");
+    record.name = record.source;
+    return record;
+  }
+  record.format = is_binary(options) ? "binary" : "text";
+  const Unit unit = unit_of(options, record.kind, record.unit_given);
+  // Angle input's rate unit is the derivative of its unit, given or not: unitless phase (clock
+  // data in seconds) has the neutral time unit, whose rate is dimensionless, so the estimators
+  // reported in the angle unit (tdev, ttotdev, mtie, tierms) convert back through it.
+  record.rate_unit = record.kind == InputKind::rate ? unit : derivative_unit(unit);
+  const double to_si = unit.to_si * value_scale(options);
+  if (is_binary(options)) {
+    load_binary(options, record, to_si);
+  } else {
+    if (!(record.rate_hz > 0.0) && options.time_column.empty() && options.file != "-") {
+      record.rate_hz = simulated_file_rate_hz(options.file);
+      if (record.rate_hz > 0.0) {
+        record.notes.push_back(fmt::format("{}: rate {:g} Hz from the file's imunoise simulate header "
+                                           "(--rate overrides)", record.source, record.rate_hz));
+      }
+    }
+    if (!(record.rate_hz > 0.0) && options.time_column.empty() && options.file != "-") {
+      if (const auto time_column = timestamp_column(options.file)) {
+        record.notes.push_back(record.source + ": column '" + *time_column + "' is read as the timestamps "
+                               "(its name says so); pass --time-column to choose another, or --rate");
+        LoadOptions timed = options;
+        timed.time_column = *time_column;
+        load_text(timed, record, to_si);
+        if (record.n_samples == 0) throw InputError(record.source + ": no samples");
+        record.name = record.source;
+        return record;
+      }
+    }
+    load_text(options, record, to_si);
+  }
+  if (record.n_samples == 0) throw InputError(record.source + ": no samples");
+  require_finite_phase(record);
+  record.name = record.source;
+  return record;
+}
+
+RecordPlan plan_record(const LoadOptions& options) {
+  RecordPlan plan;
+  Record& record = plan.meta;
+  record.source = source_name(options.file);
+  if (options.file != "-" && !std::filesystem::exists(options.file)) {
+    throw InputError(options.file + ": no such file; check the path");
+  }
+  record.kind = parse_input_kind(options.input);
+  record.rate_hz = options.rate_hz;
+  const Unit unit = unit_of(options, record.kind, record.unit_given);
+  record.rate_unit = record.kind == InputKind::rate || !record.unit_given ? unit : derivative_unit(unit);
+  plan.to_si = unit.to_si * value_scale(options);
+  plan.binary = is_binary(options);
+  if (plan.binary) {
+    if (!options.time_column.empty()) {
+      throw InputError("--time-column is for text input; binary input needs --rate");
+    }
+    require_rate(record.rate_hz, record.source);
+    plan.read = binary_options(options);
+  }
+  return plan;
+}
+
+FileChannels file_channels(const LoadOptions& options) {
+  FileChannels out;
+  if (options.file == "-") {
+    out.names.push_back("");
+    return out;
+  }
+  if (is_container(options)) {
+    if (!std::filesystem::exists(options.file)) throw InputError(options.file + ": no such file; check the path");
+    io::RecordingOptions read;
+    read.topic = options.topic;
+    read.dataset = options.dataset;
+    read.time_dataset = options.time_dataset;
+    for (const auto& channel : io::read_recording(options.file, read).channels) {
+      if (channel.name != options.temperature) out.names.push_back(channel.name);
+    }
+    out.named = true;
+    return out;
+  }
+  if (is_binary(options)) {
+    for (std::size_t c = 0; c < options.channels; ++c) out.names.push_back(std::to_string(c));
+    out.binary = true;
+    return out;
+  }
+  const auto fields = first_line_fields(options.file);
+  for (const auto& f : fields) out.named = out.named || !io::parse_number(f).has_value();
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    const std::string name = out.named ? fields[i] : std::to_string(i);
+    const std::string index = std::to_string(i);
+    if (!options.time_column.empty() && (options.time_column == name || options.time_column == index)) continue;
+    if (!options.temperature.empty() && (options.temperature == name || options.temperature == index)) continue;
+    if (out.named && options.time_column.empty() && is_time_name(name)) {
+      if (out.time_column.empty() && !(options.rate_hz > 0.0)) {
+        out.time_column = name;
+        out.note = options.file + ": column '" + name + "' is read as the timestamps (its name says "
+                   "so); pass --time-column to choose another, or --rate to use none";
+      } else if (out.note.empty()) {
+        out.note = options.file + ": column '" + name + "' looks like timestamps and is not analysed "
+                   "(--rate was given); pass --columns to analyse it anyway";
+      }
+      continue;
+    }
+    out.names.push_back(name);
+  }
+  return out;
+}
+
+}  // namespace imunoise::load
