@@ -23,6 +23,7 @@
 #include "imunoise/io/text_reader.hpp"
 #include "imunoise/io/timestamps.hpp"
 #include "imunoise/redundant/analysis.hpp"
+#include "imunoise/redundant/fused_csv.hpp"
 #include "imunoise/redundant/fusion.hpp"
 #include "imunoise/redundant/geometry.hpp"
 #include "imunoise/redundant/report.hpp"
@@ -86,117 +87,6 @@ Record read_recording(const RedundantOptionsCli& o, const std::string& file, con
     options.units = fits_unit->name;
   }
   return load::load(options);
-}
-
-// Writes the fused CSV without holding it in memory: a temporary file renamed at the end, never
-// replacing an existing file without --force.
-void write_fused_csv(const RedundantOptionsCli& o, const redundant::FusedRecord& fused,
-                     const Unit& unit, const std::string& geometry) {
-  namespace fs = std::filesystem;
-  const fs::path target(o.output);
-  if (fs::exists(target) && !o.force) {
-    throw InputError(o.output + ": file exists; imunoise does not overwrite it — choose another "
-                                "-o name or pass --force");
-  }
-  const fs::path temporary = target.string() + ".imunoise-tmp";
-  std::FILE* out = std::fopen(temporary.c_str(), "wb");
-  if (!out) throw InputError(o.output + ": cannot create the file; check the directory");
-  fmt::memory_buffer buf;
-  fmt::format_to(std::back_inserter(buf),
-                 "# imunoise redundant: fused body rates x,y,z and {} parity residual(s) p "
-                 "(p = V m) in {}; geometry {}; rate_hz {:.9g}\n",
-                 fused.parity_rad_s.size(), unit.name, geometry, fused.rate_hz);
-  fmt::format_to(std::back_inserter(buf), "t_s,x,y,z");
-  for (std::size_t r = 0; r < fused.parity_rad_s.size(); ++r) fmt::format_to(std::back_inserter(buf), ",p{}", r + 1);
-  buf.push_back('\n');
-  const double f = 1.0 / unit.to_si;
-  const double tau0 = 1.0 / fused.rate_hz;
-  bool ok = std::fwrite(buf.data(), 1, buf.size(), out) == buf.size();
-  buf.clear();
-  // Formatting dominates (~20 numbers a row): blocks of rows are formatted in parallel and
-  // written in order.
-  constexpr std::size_t kRows = 1u << 15;
-  const std::size_t workers = std::max(1u, o.threads ? o.threads : std::thread::hardware_concurrency());
-  std::vector<fmt::memory_buffer> blocks(workers);
-  auto format_rows = [&](std::size_t t0, std::size_t t1, fmt::memory_buffer& b) {
-    b.clear();
-    for (std::size_t t = t0; t < t1; ++t) {
-      fmt::format_to(std::back_inserter(b), "{:.9g}", static_cast<double>(t) * tau0);
-      for (const auto& a : fused.axes_rad_s) fmt::format_to(std::back_inserter(b), ",{:.9g}", a[t] * f);
-      for (const auto& p : fused.parity_rad_s) fmt::format_to(std::back_inserter(b), ",{:.9g}", p[t] * f);
-      b.push_back('\n');
-    }
-  };
-  for (std::size_t start = 0; start < fused.samples; start += kRows * workers) {
-    std::vector<std::thread> pool;
-    for (std::size_t w = 1; w < workers; ++w) {
-      const std::size_t t0 = std::min(fused.samples, start + w * kRows);
-      pool.emplace_back(format_rows, t0, std::min(fused.samples, t0 + kRows), std::ref(blocks[w]));
-    }
-    format_rows(start, std::min(fused.samples, start + kRows), blocks[0]);
-    for (auto& t : pool) t.join();
-    for (const auto& b : blocks) ok = ok && std::fwrite(b.data(), 1, b.size(), out) == b.size();
-    for (auto& b : blocks) b.clear();
-  }
-  ok = ok && std::fwrite(buf.data(), 1, buf.size(), out) == buf.size();
-  ok = std::fclose(out) == 0 && ok;
-  if (!ok) {
-    fs::remove(temporary);
-    throw InputError(o.output + ": write failed (disk full?)");
-  }
-  fs::rename(temporary, target);
-}
-
-std::string cell(const nlohmann::json& v, const char* fmt_spec = "{:.4g}") {
-  return v.is_number() ? fmt::format(fmt::runtime(fmt_spec), v.get<double>()) : std::string("-");
-}
-
-std::string to_table(const nlohmann::json& j) {
-  std::string out = fmt::format("# redundant unit: {} ({} sensors); fusion weights {}\n",
-                                j["geometry"].get<std::string>(), j["n_sensors"].get<std::size_t>(),
-                                j["weights"].get<std::string>());
-  out += fmt::format("axis gain (fused noise / one sensor's): x {:.4f}  y {:.4f}  z {:.4f}   GDOP {:.4f}\n",
-                     j["axis_gain"][0].get<double>(), j["axis_gain"][1].get<double>(),
-                     j["axis_gain"][2].get<double>(), j["gdop"].get<double>());
-  out += fmt::format("parity space: {} row(s); detectable {}, isolable {}\n", j["parity"].size(),
-                     j["detectable"].get<bool>() ? "yes" : "no", j["isolable"].get<bool>() ? "yes" : "no");
-  for (const auto& row : j["parity"]) {
-    std::string r;
-    for (const auto& v : row) r += fmt::format(" {:+.4f}", v.get<double>());
-    out += "  V:" + r + "\n";
-  }
-  out += fmt::format("{:<7} {:>10} {:>18} {:>14}\n", "sensor", "GDOP w/o", "min detect. fault", "(window sigma)");
-  for (std::size_t i = 0; i < j["gdop_without"].size(); ++i) {
-    out += fmt::format("{:<7} {:>10} {:>18} {:>14}\n", i + 1, cell(j["gdop_without"][i]),
-                       cell(j["min_detectable_fault"][i]) + " " + j["min_detectable_fault_unit"].get<std::string>(),
-                       cell(j["min_detectable_fault_window_sigma"][i]));
-  }
-  const auto& d = j["detection"];
-  out += fmt::format("# detection: {} s window vs {} s reference, {}/h false alarms = {:.3g} per test, "
-                     "chi2({}) threshold {}\n", cell(d["window_s"]), cell(d["reference_s"]),
-                     cell(j["false_alarm_per_hour"]), d["per_test_probability"].get<double>(),
-                     d["dof"].get<std::size_t>(), cell(d["threshold"]));
-  if (j.contains("axes")) {
-    out += fmt::format("{:<5} {:>12} {:>12} {:>12}  ({})\n", "axis", "N", "B", "K", "customary units");
-    for (const auto& a : j["axes"]) {
-      out += fmt::format("{:<5} {:>12} {:>12} {:>12}  {} / {} / {}\n", a["axis"].get<std::string>(),
-                         cell(a["N"]["value"]), cell(a["B"]["value"]), cell(a["K"]["value"]),
-                         a["N"]["unit"].get<std::string>(), a["B"]["unit"].get<std::string>(),
-                         a["K"]["unit"].get<std::string>());
-    }
-  }
-  if (j.contains("faults")) {
-    out += fmt::format("# {} tests, {} alarms, {} fault(s)\n", j["tests"].get<std::size_t>(),
-                       j["alarms"].get<std::size_t>(), j["faults"].size());
-    for (const auto& f : j["faults"]) {
-      out += fmt::format("fault: sensor {} at t = {:.3f} s (detected {:.3f} s), isolated {}, T = {:.4g} > {:.4g}\n",
-                         f["sensor"].get<std::size_t>(), f["t_s"].get<double>(), f["detected_s"].get<double>(),
-                         f["isolated"].get<bool>() ? "yes" : "no", f["statistic"].get<double>(),
-                         f["threshold"].get<double>());
-    }
-  }
-  for (const auto& n : j["notes"]) out += "# note: " + n.get<std::string>() + "\n";
-  return out;
 }
 
 void run_redundant(RedundantOptionsCli& o) {
@@ -312,13 +202,13 @@ void run_redundant(RedundantOptionsCli& o) {
     std::vector<std::span<const double>> spans;
     for (const auto& r : recs) spans.emplace_back(r.rate_si);
     fused = redundant::fuse_records(analysis, spans, recs[0].rate_hz, fo);
-    if (!o.output.empty()) write_fused_csv(o, *fused, unit, geometry.name);
+    if (!o.output.empty()) redundant::write_fused_csv(o.output, o.force, *fused, unit, geometry.name, o.threads);
   } else {
     analysis = redundant::analyze_unit(geometry, models, ao);
   }
   const nlohmann::json doc = redundant::report_json(
       analysis, unit, fused && fused->detection ? &*fused->detection : nullptr);
-  const std::string text = o.format == "json" ? doc.dump(1) + "\n" : to_table(doc);
+  const std::string text = o.format == "json" ? doc.dump(1) + "\n" : redundant::report_table(doc);
   OutputOptions out;
   out.path = o.json_output;
   out.force = o.force;

@@ -18,6 +18,8 @@
 
 #include "commands.hpp"
 #include "imunoise/error.hpp"
+#include "imunoise/io/atomic_output.hpp"
+#include "imunoise/sim/describe.hpp"
 #include "imunoise/sim/generator.hpp"
 #include "imunoise/sim/presets.hpp"
 #include "imunoise/units.hpp"
@@ -48,115 +50,6 @@ struct SimulateOptionsCli {
   CLI::Option* channels_option = nullptr;
   CLI::Option* units_option = nullptr;
   CLI::Option* range_option = nullptr;
-};
-
-// Unit names of each coefficient for a rate unit U ("deg/s" -> Q in deg, N in deg/sqrt(s)).
-struct CoefficientUnits {
-  std::string q, n, b, k, r;
-};
-
-CoefficientUnits coefficient_units(const std::string& u) {
-  const bool per_second = u.size() > 2 && u.ends_with("/s");
-  const std::string base = per_second ? u.substr(0, u.size() - 2) : "(" + u + ")*s";
-  return {base, per_second ? base + "/sqrt(s)" : "(" + u + ")*sqrt(s)", u, u + "/sqrt(s)", u + "/s"};
-}
-
-// Customary gyro units (references.md): deg/sqrt(h), deg/h, deg/h/sqrt(h), deg/h^2, arcsec.
-std::string customary(const sim::NoiseModel& m, const Unit& unit) {
-  if (unit.quantity != Quantity::angular_rate) return "";
-  const double deg = unit.to_si * 180.0 / std::numbers::pi;  // deg/s per unit
-  std::string out;
-  auto add = [&](double v, double factor, const char* name) {
-    if (v != 0.0) out += fmt::format("{}{:.6g} {}", out.empty() ? "" : ", ", v * deg * factor, name);
-  };
-  add(m.q_unit_s, 3600.0, "arcsec");
-  add(m.n_unit_sqrt_s, 60.0, "deg/sqrt(h)");
-  add(m.b_unit, 3600.0, "deg/h");
-  add(m.k_unit_per_sqrt_s, 216000.0, "deg/h/sqrt(h)");
-  add(m.r_unit_per_s, 1.296e7, "deg/h^2");
-  return out;
-}
-
-std::string describe(const sim::ChannelGenerator& g, const std::string& u) {
-  const sim::NoiseModel& m = g.model();
-  const CoefficientUnits cu = coefficient_units(u);
-  std::string s;
-  auto add = [&](const std::string& text) { s += (s.empty() ? "" : ", ") + text; };
-  if (m.q_unit_s != 0.0) add(fmt::format("Q {:g} {}", m.q_unit_s, cu.q));
-  if (m.n_unit_sqrt_s != 0.0) add(fmt::format("N {:g} {}", m.n_unit_sqrt_s, cu.n));
-  if (m.b_unit != 0.0) {
-    add(fmt::format("B {:g} {} (flicker floor {:g} {} honoured within 0.1% on [{:g}, {:g}] s, {} poles)",
-                    m.b_unit, cu.b, sim::kFlickerFloorPerB * m.b_unit, u, m.flicker_tau_min_s,
-                    m.flicker_tau_max_s, g.flicker_bank().poles.size()));
-  }
-  if (m.k_unit_per_sqrt_s != 0.0) add(fmt::format("K {:g} {}", m.k_unit_per_sqrt_s, cu.k));
-  if (m.r_unit_per_s != 0.0) add(fmt::format("R {:g} {}", m.r_unit_per_s, cu.r));
-  if (m.gm_sigma_unit != 0.0) {
-    add(fmt::format("Gauss-Markov sigma {:g} {} tau {:g} s", m.gm_sigma_unit, u, m.gm_time_s));
-  }
-  if (m.sine_amplitude_unit != 0.0) {
-    add(fmt::format("sine {:g} {} at {:g} Hz phase {:g} rad", m.sine_amplitude_unit, u,
-                    m.sine_frequency_hz, m.sine_phase_rad));
-  }
-  if (m.bias_unit != 0.0) add(fmt::format("bias {:g} {}", m.bias_unit, u));
-  if (s.empty()) s = "no noise";
-  const sim::OutputStage& o = g.output();
-  if (std::isfinite(o.range_unit)) s += fmt::format("; saturation at +-{:g} {}", o.range_unit, u);
-  if (o.scale_factor != 1.0 || o.offset_output != 0.0) {
-    s += fmt::format("; output = {:g} * rate + {:g}", o.scale_factor, o.offset_output);
-  }
-  if (o.lsb_output > 0.0) s += fmt::format("; ADC step {:g}", o.lsb_output);
-  return s;
-}
-
-// Output that is never silently replaced: a temporary file renamed at the end (like
-// write_output), or standard output. Written chunk by chunk.
-class Sink {
- public:
-  Sink(const std::string& path, bool force) : path_(path) {
-    if (path.empty() || path == "-") {
-      file_ = stdout;
-      return;
-    }
-    namespace fs = std::filesystem;
-    if (fs::exists(path) && !force) {
-      throw InputError(path + ": file exists; imunoise does not overwrite it — choose another -o name "
-                       "or pass --force");
-    }
-    temporary_ = path + ".imunoise-tmp";
-    file_ = std::fopen(temporary_.c_str(), "wb");
-    if (!file_) throw InputError(path + ": cannot create the file; check the directory");
-  }
-  Sink(const Sink&) = delete;
-  Sink& operator=(const Sink&) = delete;
-  ~Sink() {
-    if (file_ && file_ != stdout) {
-      std::fclose(file_);
-      std::error_code ignored;
-      std::filesystem::remove(temporary_, ignored);  // not committed: leave nothing behind
-    }
-  }
-  void write(const void* data, std::size_t bytes) {
-    if (bytes != 0 && std::fwrite(data, 1, bytes, file_) != bytes) {
-      throw InputError((file_ == stdout ? std::string("standard output") : path_) +
-                       ": write failed (disk full or closed pipe?)");
-    }
-  }
-  void commit() {
-    if (file_ == stdout) {
-      std::fflush(stdout);
-      return;
-    }
-    const bool ok = std::fclose(file_) == 0;
-    file_ = nullptr;
-    if (!ok) throw InputError(path_ + ": write failed (disk full?)");
-    std::filesystem::rename(temporary_, path_);
-  }
-
- private:
-  std::string path_;
-  std::string temporary_;
-  std::FILE* file_ = nullptr;
 };
 
 template <class T>
@@ -234,25 +127,10 @@ void run_simulate(const SimulateOptionsCli& o) {
   const std::size_t channels = generator.channel_count();
   const unsigned threads = o.threads == 0 ? std::max(1U, std::thread::hardware_concurrency()) : o.threads;
 
-  Sink sink(o.path, o.force);
+  io::AtomicOutput sink(o.path, o.force);
   const bool text = o.format == "text";
-  std::string header;
-  header += "# imunoise simulate 0.1.0: synthetic sensor output" +
-            (o.preset.empty() ? std::string() : " (preset " + o.preset + ")") + "\n";
-  header += fmt::format("# rate_hz {:g}  tau0_s {:g}  samples {}  duration_s {:g}  channels {}  seed {}\n",
-                        generator.rate_hz(), generator.tau0_s(), generator.sample_count(),
-                        static_cast<double>(generator.sample_count()) / generator.rate_hz(), channels,
-                        o.seed);
-  header += fmt::format("# unit {} (noise parameters); output unit {}; format {}\n", unit, output_unit,
-                        text ? "text" : o.format + " little-endian, channels interleaved");
-  header += "# sample k = average rate over [k tau0, (k+1) tau0); generator xoshiro256** + ziggurat, "
-            "reproducible bit for bit from the seed\n";
-  const Unit parsed = parse_unit(unit);
-  for (std::size_t c = 0; c < channels; ++c) {
-    header += fmt::format("# {}: {}\n", generator.channel_name(c), describe(generator.channel(c), unit));
-    const std::string cust = customary(generator.channel(c).model(), parsed);
-    if (!cust.empty()) header += fmt::format("#   customary: {}\n", cust);
-  }
+  const std::string format = text ? "text" : o.format + " little-endian, channels interleaved";
+  std::string header = sim::simulation_header(generator, o.preset, o.seed, unit, output_unit, format);
   if (text) {
     for (std::size_t c = 0; c < channels; ++c) header += (c ? "\t" : "") + generator.channel_name(c);
     header += "\n";

@@ -223,4 +223,60 @@ nlohmann::json report_json(const Analysis& a, const Unit& unit, const DetectionR
   return j;
 }
 
+namespace {
+
+std::string table_cell(const nlohmann::json& v, const char* fmt_spec = "{:.4g}") {
+  return v.is_number() ? fmt::format(fmt::runtime(fmt_spec), v.get<double>()) : std::string("-");
+}
+
+}  // namespace
+
+std::string report_table(const nlohmann::json& j) {
+  std::string out = fmt::format("# redundant unit: {} ({} sensors); fusion weights {}\n",
+                                j["geometry"].get<std::string>(), j["n_sensors"].get<std::size_t>(),
+                                j["weights"].get<std::string>());
+  out += fmt::format("axis gain (fused noise / one sensor's): x {:.4f}  y {:.4f}  z {:.4f}   GDOP {:.4f}\n",
+                     j["axis_gain"][0].get<double>(), j["axis_gain"][1].get<double>(),
+                     j["axis_gain"][2].get<double>(), j["gdop"].get<double>());
+  out += fmt::format("parity space: {} row(s); detectable {}, isolable {}\n", j["parity"].size(),
+                     j["detectable"].get<bool>() ? "yes" : "no", j["isolable"].get<bool>() ? "yes" : "no");
+  for (const auto& row : j["parity"]) {
+    std::string r;
+    for (const auto& v : row) r += fmt::format(" {:+.4f}", v.get<double>());
+    out += "  V:" + r + "\n";
+  }
+  out += fmt::format("{:<7} {:>10} {:>18} {:>14}\n", "sensor", "GDOP w/o", "min detect. fault", "(window sigma)");
+  for (std::size_t i = 0; i < j["gdop_without"].size(); ++i) {
+    out += fmt::format("{:<7} {:>10} {:>18} {:>14}\n", i + 1, table_cell(j["gdop_without"][i]),
+                       table_cell(j["min_detectable_fault"][i]) + " " + j["min_detectable_fault_unit"].get<std::string>(),
+                       table_cell(j["min_detectable_fault_window_sigma"][i]));
+  }
+  const auto& d = j["detection"];
+  out += fmt::format("# detection: {} s window vs {} s reference, {}/h false alarms = {:.3g} per test, "
+                     "chi2({}) threshold {}\n", table_cell(d["window_s"]), table_cell(d["reference_s"]),
+                     table_cell(j["false_alarm_per_hour"]), d["per_test_probability"].get<double>(),
+                     d["dof"].get<std::size_t>(), table_cell(d["threshold"]));
+  if (j.contains("axes")) {
+    out += fmt::format("{:<5} {:>12} {:>12} {:>12}  ({})\n", "axis", "N", "B", "K", "customary units");
+    for (const auto& a : j["axes"]) {
+      out += fmt::format("{:<5} {:>12} {:>12} {:>12}  {} / {} / {}\n", a["axis"].get<std::string>(),
+                         table_cell(a["N"]["value"]), table_cell(a["B"]["value"]), table_cell(a["K"]["value"]),
+                         a["N"]["unit"].get<std::string>(), a["B"]["unit"].get<std::string>(),
+                         a["K"]["unit"].get<std::string>());
+    }
+  }
+  if (j.contains("faults")) {
+    out += fmt::format("# {} tests, {} alarms, {} fault(s)\n", j["tests"].get<std::size_t>(),
+                       j["alarms"].get<std::size_t>(), j["faults"].size());
+    for (const auto& f : j["faults"]) {
+      out += fmt::format("fault: sensor {} at t = {:.3f} s (detected {:.3f} s), isolated {}, T = {:.4g} > {:.4g}\n",
+                         f["sensor"].get<std::size_t>(), f["t_s"].get<double>(), f["detected_s"].get<double>(),
+                         f["isolated"].get<bool>() ? "yes" : "no", f["statistic"].get<double>(),
+                         f["threshold"].get<double>());
+    }
+  }
+  for (const auto& n : j["notes"]) out += "# note: " + n.get<std::string>() + "\n";
+  return out;
+}
+
 }  // namespace imunoise::redundant

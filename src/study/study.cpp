@@ -287,9 +287,7 @@ void detect_faults(Study& study, const redundant::Analysis& analysis,
   options.threads = threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
   try {
     const auto fused = redundant::fuse_records(analysis, spans, rate_hz, options);
-    if (fused.detection) {
-      study.redundant = redundant::report_json(analysis, used.front()->record.rate_unit, &*fused.detection);
-    }
+    if (fused.detection) study.redundant->detection = std::move(fused.detection);
   } catch (const InputError& e) {
     study.notes.push_back(std::string("redundant unit: fault detection not run on the record: ") + e.what());
   }
@@ -316,7 +314,7 @@ void study_redundant(Study& study, const CurveOptions& curve_options) {
     return;
   }
   const auto analysis = redundant::analyze_unit(geometry, sensors);
-  study.redundant = redundant::report_json(analysis, used.front()->record.rate_unit);
+  study.redundant = Study::Redundant{analysis, used.front()->record.rate_unit, std::nullopt};
   Record fused;
   fused.rate_hz = used.front()->record.rate_hz;
   fused.rate_unit = used.front()->record.rate_unit;
@@ -445,7 +443,7 @@ Study run_study(std::vector<Record> records, const StudyOptions& options,
     if (ch.fit && ch.fit->coefficients.quantity == Quantity::angular_rate && ch.record.unit_given) {
       report("navigation error", 0.8);
       try {
-        ch.nav = navigation_json(ch.fit->coefficients, options);
+        ch.nav = navigation(ch.fit->coefficients, options);
       } catch (const InputError& e) {
         ch.warnings.push_back(std::string("navigation error not computed: ") + e.what());
       }
@@ -469,8 +467,8 @@ Study run_study(std::vector<Record> records, const StudyOptions& options,
   return study;
 }
 
-nlohmann::json navigation_json(const NoiseCoefficients& c, const StudyOptions& options) {
-  return nav::report_json(nav::navigation_error(nav_options(options, c)));
+nav::NavResult navigation(const NoiseCoefficients& c, const StudyOptions& options) {
+  return nav::navigation_error(nav_options(options, c));
 }
 
 nlohmann::json study_json(const Study& study) {
@@ -530,14 +528,18 @@ nlohmann::json study_json(const Study& study) {
       c["fit"] = nullptr;
     }
     c["spec_comparison"] = ch.comparison ? comparison_json(*ch.comparison) : nlohmann::json(nullptr);
-    c["nav"] = ch.nav;
+    c["nav"] = ch.nav ? nav::report_json(*ch.nav) : nlohmann::json(nullptr);
     c["davar"] = rec.davar ? davar_json(rec, *rec.davar) : nlohmann::json(nullptr);
     c["warnings"] = ch.warnings;
     channels.push_back(std::move(c));
   }
   doc["channels"] = std::move(channels);
-  doc["redundant"] = study.redundant;
-  if (!study.redundant.is_null() && !study.fused_curves.empty()) {
+  doc["redundant"] = nullptr;
+  if (study.redundant) {
+    const auto& r = *study.redundant;
+    doc["redundant"] = redundant::report_json(r.analysis, r.unit, r.detection ? &*r.detection : nullptr);
+  }
+  if (study.redundant && !study.fused_curves.empty()) {
     doc["redundant"]["fused_curves"] = curves_json(study.fused_record, study.fused_curves);
   }
   doc["kalibr"] = kalibr_json(study);

@@ -40,4 +40,7 @@ nlohmann::json report_json(const Analysis& analysis, const Unit& unit,
 /// The fault list alone (the `faults` array of report_json).
 nlohmann::json faults_json(const DetectionResult& detection);
 
+/// The report document of report_json as the text table of `imunoise redundant --format table`.
+std::string report_table(const nlohmann::json& report);
+
 }  // namespace imunoise::redundant

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "imunoise/fit/fit.hpp"
+#include "imunoise/nav/navigation.hpp"
 #include "imunoise/spec/comparison.hpp"
 #include "imunoise/spec/spec.hpp"
 #include "imunoise/study/record.hpp"
@@ -26,16 +27,19 @@ struct SensorOptions {
 struct SensorStudy {
   fit::FitResult fit;
   std::optional<SpecComparison> comparison;
-  /// At the horizon only, {"t_s", "latitude_deg", "models": [{"model", "lat_deg", "path_m",
-  /// "lon_deg"}]}, or {"t_s", "error": why} when it cannot be computed; null when not asked.
-  nlohmann::json nav;
+  /// The navigation error when asked for (options.nav) and computable; otherwise why not in
+  /// nav_error (not a gyro, no unit, ...).
+  std::optional<nav::NavResult> nav;
+  std::string nav_error;
 };
 
 /// InputError naming the record when it cannot be fitted.
 SensorStudy study_sensor(const Record& record, const SensorOptions& options);
 
 /// The `imunoise fit` document of the sensor with "spec_comparison" (null without a spec) and,
-/// when computed, "nav".
+/// when asked for, "nav" at the horizon only (a fleet of thousands keeps one number per model
+/// and quantity): {"t_s", "latitude_deg", "models": [{"model", "lat_deg", "path_m",
+/// "lon_deg"}]}, or {"t_s", "error": why}.
 nlohmann::json sensor_json(const Record& record, const SensorOptions& options, const SensorStudy& study);
 
 }  // namespace imunoise::study

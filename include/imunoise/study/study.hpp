@@ -5,7 +5,8 @@
 // and the one report document every output is rendered from (report.json as is; the HTML,
 // Markdown, CSV, Kalibr file and figures from it: render.hpp, write.hpp).
 //
-// Entry point for every caller (analyze, demo, Python, the fleet command): run_study().
+// Entry point for every caller of a set of channels (analyze, demo, Python): run_study(); the
+// fleet studies one record at a time with study_sensor() (study/sensor.hpp), the same stages.
 // Channels must share one sample rate, and channels of one quantity one unit (a mixed set
 // would put incomparable curves on one figure and cannot be fused); a channel whose stage
 // fails is kept with its error when keep_going is set, otherwise the InputError propagates.
@@ -18,6 +19,9 @@
 #include <nlohmann/json.hpp>
 
 #include "imunoise/fit/fit.hpp"
+#include "imunoise/nav/navigation.hpp"
+#include "imunoise/redundant/analysis.hpp"
+#include "imunoise/redundant/detection.hpp"
 #include "imunoise/spec/comparison.hpp"
 #include "imunoise/spec/spec.hpp"
 #include "imunoise/study/curves.hpp"
@@ -58,7 +62,7 @@ struct ChannelStudy {
   std::vector<Curve> curves;
   std::optional<fit::FitResult> fit;
   std::optional<SpecComparison> comparison;
-  nlohmann::json nav;               ///< navigation-error curves (null: not computed, see notes)
+  std::optional<nav::NavResult> nav;  ///< navigation-error curves (none: not computed, see warnings)
   std::string error;                ///< non-empty: this channel failed (keep_going)
   std::vector<std::string> warnings;
 };
@@ -67,7 +71,14 @@ struct Study {
   StudyOptions options;
   std::vector<ChannelStudy> channels;
   std::vector<FailedInput> failed_inputs;
-  nlohmann::json redundant;         ///< the unit's analysis, redundant/report.hpp (null: no geometry)
+  /// The redundant unit (geometry given and one fitted gyro per sensor): its analysis, the unit
+  /// of its channels and, when run on the samples, the fault detection.
+  struct Redundant {
+    redundant::Analysis analysis;
+    Unit unit;
+    std::optional<redundant::DetectionResult> detection;
+  };
+  std::optional<Redundant> redundant;
   std::vector<Curve> fused_curves;  ///< oadev of the fused body axes x, y, z (from the samples)
   Record fused_record;              ///< rate and unit of the fused axes (no samples kept)
   std::vector<std::string> notes;   ///< study-level remarks (stages not available, ...)
@@ -88,11 +99,11 @@ Study run_study(std::vector<Record> records, const StudyOptions& options,
 /// "kalibr", "figures", "notes"}. Every number states its unit (in its key or a "unit" field).
 nlohmann::json study_json(const Study& study);
 
-/// The navigation-error document (nav/report.hpp) of a free-inertial system whose three gyros
-/// all have the noise `c` (SI), with the study's navigation options (nav_hours,
-/// nav_latitude_deg, nav_models): what run_study computes per gyro channel, for callers that
-/// study one record at a time (the fleet). InputError from the navigation module.
-nlohmann::json navigation_json(const NoiseCoefficients& c, const StudyOptions& options);
+/// The navigation error of a free-inertial system whose three gyros all have the noise `c`
+/// (SI), with the study's navigation options (nav_hours, nav_latitude_deg, nav_models): what
+/// run_study computes per gyro channel, and study_sensor at the horizon. InputError from the
+/// navigation module.
+nav::NavResult navigation(const NoiseCoefficients& c, const StudyOptions& options);
 
 /// The library version written into reports.
 std::string_view version();
