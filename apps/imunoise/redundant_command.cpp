@@ -27,7 +27,7 @@
 #include "imunoise/redundant/fusion.hpp"
 #include "imunoise/redundant/geometry.hpp"
 #include "imunoise/redundant/report.hpp"
-#include "imunoise/redundant/sensor_fit.hpp"
+#include "imunoise/study/sensor.hpp"
 #include "imunoise/units.hpp"
 #include "imunoise/load/load.hpp"
 #include "input_options.hpp"
@@ -192,7 +192,7 @@ void run_redundant(RedundantOptionsCli& o) {
     if (models.empty() && o.detect) {
       fmt::print(stderr, "imunoise: note: no --from fits: each recording's noise model is fitted "
                          "from the recording itself (a fault inside it inflates its model)\n");
-      for (const auto& r : recs) models.push_back(redundant::fit_sensor_model(r.rate_si, r.rate_hz, r.source));
+      for (const auto& r : recs) models.push_back(study::sensor_model(r));
     }
     analysis = redundant::analyze_unit(geometry, models, ao);
     redundant::FusionOptions fo;

@@ -17,7 +17,8 @@
 #include "imunoise/redundant/fusion.hpp"
 #include "imunoise/redundant/geometry.hpp"
 #include "imunoise/redundant/report.hpp"
-#include "imunoise/redundant/sensor_fit.hpp"
+#include "imunoise/load/load.hpp"
+#include "imunoise/study/sensor.hpp"
 #include "imunoise/units.hpp"
 #include "to_python.hpp"
 
@@ -129,7 +130,12 @@ py::dict fuse(const py::object& records, const std::string& geometry, double rat
   }
   if (detect && models.empty()) {
     for (std::size_t i = 0; i < si.size(); ++i) {
-      models.push_back(redundant::fit_sensor_model(si[i], rate, "records[" + std::to_string(i) + "]"));
+      Record record;
+      record.name = record.source = "records[" + std::to_string(i) + "]";
+      record.rate_hz = rate;
+      record.rate_unit = Unit{"rad/s", Quantity::angular_rate, 1.0};
+      record.unit_given = true;
+      models.push_back(study::sensor_model(load::finish_rates(std::move(record), si[i], {})));
     }
   }
   redundant::AnalysisOptions ao;

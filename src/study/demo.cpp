@@ -5,6 +5,7 @@
 
 #include <fmt/core.h>
 
+#include "imunoise/load/integrate.hpp"
 #include "imunoise/phase.hpp"
 #include "imunoise/sim/generator.hpp"
 #include "imunoise/sim/presets.hpp"
@@ -53,7 +54,7 @@ std::vector<Record> simulate_demo_records(const DemoOptions& options) {
     r.kind = InputKind::rate;
     r.rate_hz = preset.rate_hz;
     r.n_samples = n;
-    r.phase_si = phase_from_rate(rates[c], 1.0 / preset.rate_hz, compensated_mean(rates[c]));
+    r.phase_si = load::integrate_rate(rates[c], preset.rate_hz);
     rates[c].clear();
     rates[c].shrink_to_fit();
     r.rate_unit = unit;

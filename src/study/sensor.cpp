@@ -57,4 +57,12 @@ nlohmann::json sensor_json(const Record& record, const SensorOptions& options, c
   return json;
 }
 
+redundant::SensorModel sensor_model(const Record& record) {
+  try {
+    return {record.source, fit_channel(record, fit::FitOptions{}, parse_tau_grid("octave")).coefficients};
+  } catch (const InputError& e) {
+    throw InputError(std::string(e.what()) + "; give the sensor's fit with --from");
+  }
+}
+
 }  // namespace imunoise::study

@@ -9,6 +9,7 @@
 
 #include "imunoise/fit/fit.hpp"
 #include "imunoise/nav/navigation.hpp"
+#include "imunoise/redundant/analysis.hpp"
 #include "imunoise/spec/comparison.hpp"
 #include "imunoise/spec/spec.hpp"
 #include "imunoise/study/record.hpp"
@@ -41,5 +42,10 @@ SensorStudy study_sensor(const Record& record, const SensorOptions& options);
 /// and quantity): {"t_s", "latitude_deg", "models": [{"model", "lat_deg", "path_m",
 /// "lon_deg"}]}, or {"t_s", "error": why}.
 nlohmann::json sensor_json(const Record& record, const SensorOptions& options, const SensorStudy& study);
+
+/// The noise model a redundant unit's fusion weights and fault detector need when no fit
+/// documents are given: the record's own fit (fit_channel, default options, octave grid), as
+/// `imunoise fit` identifies it. InputError naming the record when it cannot be fitted.
+redundant::SensorModel sensor_model(const Record& record);
 
 }  // namespace imunoise::study
