@@ -43,25 +43,11 @@ struct DevOptionsCli {
   bool mpi = false;
 };
 
-// Where the record came from and what preprocessing did, on each curve object.
-void add_provenance(const Record& record, nlohmann::json& object) {
-  if (!record.format.empty()) {
-    object["recording"] = {{"format", record.format}, {"stream", record.stream},
-                           {"channel", record.channel}};
-  }
-  if (!record.preprocessing.empty()) object["preprocessing"] = record.preprocessing;
-  if (record.davar) object["davar"] = preprocess::davar_json(*record.davar);
-  if (!record.temperature_bins.empty()) {
-    // Per bin: bias, the N/B read-offs and the full noise-model fit (default fit options).
-    object["temperature_bins"] =
-        preprocess::temperature_bins_json(record.temperature_bins, study::record_info(record), fit::FitOptions{});
-  }
-}
-
 std::string render(const DevOptionsCli& options, const study::Record& record,
                    const std::vector<study::Curve>& curves) {
   if (options.format == "json") {
-    const auto array = study::curves_json(record, curves);
+    auto array = study::curves_json(record, curves);
+    for (auto& object : array) study::add_provenance(record, fit::FitOptions{}, object);
     return (array.size() == 1 ? array[0] : array).dump(1) + "\n";
   }
   if (options.format == "csv") return study::curves_csv(curves);
@@ -139,17 +125,7 @@ void run_dev(const DevOptionsCli& options) {
   const auto curves = study::compute_curves(record, co, [](const std::string& note) {
     fmt::print(stderr, "imunoise: warning: {}\n", note);
   });
-  std::string text;
-  if (options.format == "json") {
-    auto array = study::curves_json(record, curves);
-    for (auto& object : array) add_provenance(record, object);
-    text = (array.size() == 1 ? array[0] : array).dump(1) + "\n";
-  } else if (options.format == "csv") {
-    text = study::curves_csv(curves);
-  } else {
-    text = study::curves_table(record, curves, options.ci_level);
-  }
-  write_output(options.output, text);
+  write_output(options.output, render(options, record, curves));
   if (record.timing && !record.timing->gaps.empty() && options.input.gaps != "split") {
     fmt::print(stderr, "imunoise: warning: {} gaps ({} missing samples) were treated as equally "
                        "spaced (--allow-gaps)\n", record.timing->gaps.size(),

@@ -84,16 +84,7 @@ void run_fit(FitCommandOptions& options) {
   nlohmann::json json = fit::report_json(study::record_info(record), fo, result);
   options.spec.force = options.output.force;
   json["spec_comparison"] = run_spec_exports(options.spec, result.coefficients, record.rate_hz);
-  // Where the record came from and what preprocessing removed.
-  if (!record.channel.empty()) {
-    json["recording"] = {{"format", record.format}, {"stream", record.stream},
-                         {"channel", record.channel}};
-  }
-  if (!record.preprocessing.empty()) json["preprocessing"] = record.preprocessing;
-  if (record.davar) json["davar"] = preprocess::davar_json(*record.davar);
-  if (!record.temperature_bins.empty()) {
-    json["temperature_bins"] = preprocess::temperature_bins_json(record.temperature_bins, study::record_info(record), fo);
-  }
+  study::add_provenance(record, fo, json);
   std::string preprocessing_lines;
   for (const auto& line : record.preprocessing) preprocessing_lines += "# preprocessing: " + line + "\n";
   std::string text;

@@ -7,7 +7,6 @@
 //   add_spec_export_options(*sub, spec_options);    // in setup_<cmd>
 //   spec_options.force = output.force;              // the command's own --force (not added here)
 //   json["spec_comparison"] = run_spec_exports(spec_options, coefficients, rate_hz);
-//   table += format_spec_table(json["spec_comparison"]);   // for --format table
 #include <CLI/CLI.hpp>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -38,10 +37,5 @@ void add_spec_export_options(CLI::App& app, SpecExportOptions& options);
 /// @param rate_hz sample rate of the record (Hz), for update_rate and the discrete values
 nlohmann::json run_spec_exports(const SpecExportOptions& options,
                                 const NoiseCoefficients& coefficients, double rate_hz);
-
-/// A plain-text table of the comparison: term, measured, spec, deviation, CI vs limit,
-/// verdict. Takes the JSON of comparison_json (imunoise/spec/report.hpp) / run_spec_exports; "" for null.
-std::string format_spec_table(const nlohmann::json& comparison);
-std::string format_spec_table(const SpecComparison& comparison);
 
 }  // namespace imunoise::cli

@@ -123,14 +123,4 @@ PreparedRecord prepare_record(std::span<const double> samples, const py::object&
   return out;
 }
 
-void add_provenance(const PreparedRecord& prepared, const fit::FitOptions& fit_options, nlohmann::json& document) {
-  const Record& record = prepared.record;
-  if (!record.preprocessing.empty()) document["preprocessing"] = record.preprocessing;
-  if (record.davar) document["davar"] = preprocess::davar_json(*record.davar);
-  if (!record.temperature_bins.empty()) {
-    document["temperature_bins"] =
-        preprocess::temperature_bins_json(record.temperature_bins, study::record_info(record), fit_options);
-  }
-}
-
 }  // namespace imunoise::python

@@ -53,8 +53,4 @@ Unit rate_unit_of(const std::string& units);
 /// `values` (in `unit`) converted to SI in place.
 void scale_to_si(std::vector<double>& values, const Unit& unit);
 
-/// "preprocessing", "davar", "temperature_bins" (and "timing") added to a document, as the
-/// command line adds them.
-void add_provenance(const PreparedRecord& prepared, const fit::FitOptions& fit_options, nlohmann::json& document);
-
 }  // namespace imunoise::python

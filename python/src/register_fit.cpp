@@ -104,7 +104,7 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
       py::gil_scoped_release release;
       result = study::fit_channel(prepared.record, options, grid);
       report = fit::report_json(study::record_info(prepared.record), options, result);
-      add_provenance(prepared, options, report);
+      study::add_provenance(prepared.record, options, report);
     }
     report["spec_comparison"] =
         spec ? comparison_json(compare(result.coefficients, *spec)) : nlohmann::json(nullptr);

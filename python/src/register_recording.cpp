@@ -28,6 +28,7 @@
 #include "imunoise/study/curves.hpp"
 #include "imunoise/tau_grid.hpp"
 #include "preprocessing.hpp"
+#include "imunoise/study/fit_stage.hpp"
 #include "to_python.hpp"
 
 namespace py = pybind11;
@@ -161,7 +162,7 @@ py::object dev(const Array& data, const py::object& rate, const py::object& esti
     py::gil_scoped_release release;
     const auto curves = study::compute_curves(prepared.record, options);
     auto array = study::curves_json(prepared.record, curves);
-    for (auto& object : array) add_provenance(prepared, fit::FitOptions{}, object);
+    for (auto& object : array) study::add_provenance(prepared.record, fit::FitOptions{}, object);
     document = array.size() == 1 ? array[0] : array;
   }
   return to_python(document);

@@ -7,7 +7,9 @@
 
 #include "imunoise/allan.hpp"
 #include "imunoise/error.hpp"
+#include "imunoise/preprocess/pipeline.hpp"
 #include "imunoise/preprocess/pooled_deviation.hpp"
+#include "imunoise/preprocess/temperature.hpp"
 #include "imunoise/theo.hpp"
 
 namespace imunoise::study {
@@ -65,6 +67,17 @@ fit::FitResult fit_channel(const Record& record, const fit::FitOptions& options,
     points = oadev(record.phase_si, tau0_s, factors);
   }
   return fit_curve(record, points, n_phase, options, warnings);
+}
+
+void add_provenance(const Record& record, const fit::FitOptions& bin_fit, nlohmann::json& document) {
+  if (!record.format.empty()) {
+    document["recording"] = {{"format", record.format}, {"stream", record.stream}, {"channel", record.channel}};
+  }
+  if (!record.preprocessing.empty()) document["preprocessing"] = record.preprocessing;
+  if (record.davar) document["davar"] = preprocess::davar_json(*record.davar);
+  if (!record.temperature_bins.empty()) {
+    document["temperature_bins"] = preprocess::temperature_bins_json(record.temperature_bins, record_info(record), bin_fit);
+  }
 }
 
 std::string fit_table(const Record& record, const fit::FitOptions& options,

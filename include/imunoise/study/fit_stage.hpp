@@ -36,6 +36,12 @@ fit::FitResult fit_channel(const Record& record, const fit::FitOptions& options,
 fit::FitResult fit_curve(const Record& record, std::span<const DevPoint> oadev_points, std::size_t n_phase,
                          const fit::FitOptions& options, const std::vector<std::string>& warnings = {});
 
+/// Where the record came from and what preprocessing did, added to a document (each curve
+/// object of `dev --format json`, the `fit` document, Python's dicts): "recording" {format,
+/// stream, channel} when a file was read, "preprocessing" (one line per step), "davar", and
+/// "temperature_bins" (each bin's fit with `bin_fit` options).
+void add_provenance(const Record& record, const fit::FitOptions& bin_fit, nlohmann::json& document);
+
 /// `imunoise fit --format table`: coefficients (record unit and customary), notes, eqs. 1-2,
 /// summary, warnings and the residual per tau.
 std::string fit_table(const Record& record, const fit::FitOptions& options,
