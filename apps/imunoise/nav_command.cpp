@@ -39,41 +39,8 @@ struct NavOptionsCli {
   OutputOptions output;
 };
 
-Coefficient given(double value_si) {
-  Coefficient c;
-  c.value = value_si;
-  c.identified = value_si != 0.0;
-  return c;
-}
-
 nav::GyroAxisNoise axis_from_options(const NavOptionsCli& o, const Unit& unit) {
-  auto non_negative = [](double v, const char* name) {
-    if (!(v >= 0.0) || !std::isfinite(v)) {
-      throw InputError(std::string(name) + " must be >= 0 and finite (a noise intensity; its sign is meaningless)");
-    }
-  };
-  non_negative(o.q, "--Q");
-  non_negative(o.n, "--N");
-  non_negative(o.b, "--B");
-  non_negative(o.k, "--K");
-  non_negative(o.gm_sigma, "--gm-sigma");
-  if (!std::isfinite(o.r)) throw InputError("--R must be finite");
-  if (o.gm_sigma > 0.0 && !(o.gm_tau > 0.0 && std::isfinite(o.gm_tau))) {
-    throw InputError("--gm-sigma needs --gm-tau SECONDS > 0 (the correlation time)");
-  }
-  nav::GyroAxisNoise a;
-  a.coefficients.quantization = given(o.q * unit.to_si);
-  a.coefficients.random_walk = given(o.n * unit.to_si);
-  a.coefficients.bias_instability = given(o.b * unit.to_si);
-  a.coefficients.rate_random_walk = given(o.k * unit.to_si);
-  a.coefficients.rate_ramp = given(o.r * unit.to_si);
-  if (o.gm_sigma > 0.0) {
-    GaussMarkovTerm gm;
-    gm.sigma = given(o.gm_sigma * unit.to_si);
-    gm.correlation_time_s = given(o.gm_tau);
-    a.coefficients.gauss_markov = gm;
-  }
-  return a;
+  return nav::axis_from_coefficients({o.q, o.n, o.b, o.k, o.r, o.gm_sigma, o.gm_tau}, unit, {"--", '-'});
 }
 
 void run_nav(const NavOptionsCli& o) {

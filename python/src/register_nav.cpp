@@ -23,13 +23,6 @@ namespace py = pybind11;
 namespace imunoise::python {
 namespace {
 
-Coefficient given(double v) {
-  Coefficient c;
-  c.value = v;
-  c.identified = v != 0.0;
-  return c;
-}
-
 nav::GyroAxisNoise from_fit_object(const py::handle& fit, const std::string& name) {
   const std::string text = py::module_::import("json").attr("dumps")(fit).cast<std::string>();
   return nav::axis_from_fit_json(nlohmann::json::parse(text), name);
@@ -43,28 +36,13 @@ py::object nav_call(double N, double B, double K, double Q, double R, double bia
   if (unit.quantity != Quantity::angular_rate) {
     throw InputError("units='" + units + "' is not an angular rate: give gyro coefficients, e.g. units='deg/s'");
   }
-  for (double v : {N, B, K, Q, gm_sigma}) {
-    if (!(v >= 0.0) || !std::isfinite(v)) throw InputError("N, B, K, Q and gm_sigma must be >= 0 and finite");
-  }
-  if (gm_sigma > 0.0 && !(gm_tau > 0.0)) throw InputError("gm_sigma needs gm_tau > 0 (s)");
   if (!(hours > 0.0) || !std::isfinite(hours)) throw InputError("hours must be positive");
   if (!(std::abs(latitude) <= 90.0)) throw InputError("latitude must lie within [-90, 90] deg");
   nav::NavOptions o;
   const bool coefficients = N != 0 || B != 0 || K != 0 || Q != 0 || R != 0 || gm_sigma != 0;
   if (!fit.is_none() && coefficients) throw InputError("give either coefficients or fit=..., not both");
   if (fit.is_none()) {
-    nav::GyroAxisNoise a;
-    a.coefficients.random_walk = given(N * unit.to_si);
-    a.coefficients.bias_instability = given(B * unit.to_si);
-    a.coefficients.rate_random_walk = given(K * unit.to_si);
-    a.coefficients.quantization = given(Q * unit.to_si);
-    a.coefficients.rate_ramp = given(R * unit.to_si);
-    if (gm_sigma > 0) {
-      GaussMarkovTerm g;
-      g.sigma = given(gm_sigma * unit.to_si);
-      g.correlation_time_s = given(gm_tau);
-      a.coefficients.gauss_markov = g;
-    }
+    const nav::GyroAxisNoise a = nav::axis_from_coefficients({Q, N, B, K, R, gm_sigma, gm_tau}, unit, {"", '_'});
     for (auto& x : o.axes) x = a;
   } else if (py::isinstance<py::dict>(fit)) {
     const nav::GyroAxisNoise a = from_fit_object(fit, "fit");

@@ -252,6 +252,47 @@ std::string report_table(const NavResult& r) {
   return out;
 }
 
+GyroAxisNoise axis_from_coefficients(const AxisCoefficients& c, const Unit& unit, const CoefficientNames& names) {
+  auto name = [&](std::string_view base, std::string_view suffix = {}) {
+    std::string n = names.prefix + std::string(base);
+    if (!suffix.empty()) n += names.separator + std::string(suffix);
+    return n;
+  };
+  auto non_negative = [&](double v, const std::string& what) {
+    if (!(v >= 0.0) || !std::isfinite(v)) {
+      throw InputError(what + " must be >= 0 and finite (a noise intensity; its sign is meaningless)");
+    }
+  };
+  non_negative(c.q, name("Q"));
+  non_negative(c.n, name("N"));
+  non_negative(c.b, name("B"));
+  non_negative(c.k, name("K"));
+  non_negative(c.gm_sigma, name("gm", "sigma"));
+  if (!std::isfinite(c.r)) throw InputError(name("R") + " must be finite");
+  if (c.gm_sigma > 0.0 && !(c.gm_tau_s > 0.0 && std::isfinite(c.gm_tau_s))) {
+    throw InputError(name("gm", "sigma") + " needs " + name("gm", "tau") + " SECONDS > 0 (the correlation time)");
+  }
+  auto given = [](double value_si) {
+    Coefficient out;
+    out.value = value_si;
+    out.identified = value_si != 0.0;
+    return out;
+  };
+  GyroAxisNoise a;
+  a.coefficients.quantization = given(c.q * unit.to_si);
+  a.coefficients.random_walk = given(c.n * unit.to_si);
+  a.coefficients.bias_instability = given(c.b * unit.to_si);
+  a.coefficients.rate_random_walk = given(c.k * unit.to_si);
+  a.coefficients.rate_ramp = given(c.r * unit.to_si);
+  if (c.gm_sigma > 0.0) {
+    GaussMarkovTerm gm;
+    gm.sigma = given(c.gm_sigma * unit.to_si);
+    gm.correlation_time_s = given(c.gm_tau_s);
+    a.coefficients.gauss_markov = gm;
+  }
+  return a;
+}
+
 GyroAxisNoise axis_from_fit_json(const nlohmann::json& doc, const std::string& source) {
   if (!doc.is_object()) {
     throw InputError(source + ": not an imunoise fit document (a JSON object with 'unit' and 'terms' is expected); "

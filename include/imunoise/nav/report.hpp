@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "imunoise/nav/navigation.hpp"
+#include "imunoise/units.hpp"
 
 namespace imunoise::nav {
 
@@ -41,6 +42,24 @@ std::string report_table(const NavResult& result);
 /// "identified": false is absent) and, when present and identified, GM. InputError naming
 /// `source` and the missing or wrong field when the document is not a gyro fit.
 GyroAxisNoise axis_from_fit_json(const nlohmann::json& document, const std::string& source);
+
+/// Coefficients of one gyro axis as a user gives them, in `unit`: Q, N, B, K, R and a
+/// Gauss-Markov sigma with its correlation time (s).
+struct AxisCoefficients {
+  double q = 0.0, n = 0.0, b = 0.0, k = 0.0, r = 0.0, gm_sigma = 0.0, gm_tau_s = 0.0;
+};
+
+/// How the edge names the coefficients in messages: "--N", "--gm-sigma" (command line) or "N",
+/// "gm_sigma" (Python).
+struct CoefficientNames {
+  std::string prefix;
+  char separator = '-';
+};
+
+/// The noise of one gyro axis from given coefficients, converted to SI. InputError naming the
+/// coefficient when a noise intensity is negative or not finite, or a GM sigma has no
+/// correlation time.
+GyroAxisNoise axis_from_coefficients(const AxisCoefficients& c, const Unit& unit, const CoefficientNames& names);
 
 /// Reads and parses the file, then axis_from_fit_json; InputError naming the file when it
 /// cannot be read or is not JSON.
