@@ -43,7 +43,8 @@ struct DevOptionsCli {
   bool mpi = false;
 };
 
-// Where the record came from and what preprocessing did (issue 16), on each curve object.
+// Where the record came from and what preprocessing did, on each curve object: a curve must
+// say which stream and steps it was computed from.
 void add_provenance(const PhaseRecord& record, nlohmann::json& object) {
   if (!record.format.empty()) {
     object["recording"] = {{"format", record.format}, {"stream", record.stream},
@@ -200,8 +201,9 @@ void setup_dev(CLI::App& app) {
   command->add_flag("--force", options->output.force, "replace an existing output file");
   command->add_flag("--mpi", options->mpi,
                     "under mpirun: each rank reads its own slice of the file, the sums of adev "
-                    "oadev mdev tdev hdev ohdev are merged in a tree (no confidence intervals; "
-                    "docs/scale.md)");
+                    "oadev mdev tdev hdev ohdev are merged in a tree; confidence intervals count "
+                    "the whole record, with the noise type identified on rank 0's slice "
+                    "(docs/scale.md)");
   command->callback([options] { run_dev(*options); });
 }
 
