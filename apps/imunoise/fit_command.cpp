@@ -99,7 +99,7 @@ void run_fit(FitOptionsCli& options) {
   nlohmann::json json = fit::report_json(study::record_info(record), fo, result);
   options.spec.force = options.output.force;
   json["spec_comparison"] = run_spec_exports(options.spec, result.coefficients, record.rate_hz);
-  // Where the record came from and what preprocessing removed (issue 16).
+  // Where the record came from and what preprocessing removed, so the fit names its input.
   if (!loaded.channel.empty()) {
     json["recording"] = {{"format", loaded.format}, {"stream", loaded.stream},
                       {"channel", loaded.channel}};

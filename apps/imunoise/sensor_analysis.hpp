@@ -2,8 +2,8 @@
 // The analysis of one sensor record, shared by `fit` and `fleet`: the oadev curve, the noise
 // fit and the datasheet verdict as one JSON document (the `fit --format json` document).
 //
-// analyze_sensor() is the single entry point `fleet` calls per file; when the study pipeline
-// (issue 14) provides its own per-record entry point, only this function changes.
+// analyze_sensor() is the single entry point `fleet` calls per file, so that moving the fleet
+// onto the study pipeline's per-record entry point changes only this function.
 #include <cstddef>
 #include <string>
 #include <vector>

@@ -90,7 +90,7 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
 
   fit::FitResult result;
   if (preprocessing.any()) {
-    // Timestamps or preprocessing (issue 16): the record built as the command line builds it,
+    // Timestamps or preprocessing: the record built as the command line builds it,
     // fitted by the study's fit stage (a split record is fitted to its pooled curve).
     if (kind != InputKind::rate) {
       throw InputError("skip, detrend, outliers, gaps, davar, temperature and time work on rate samples; "
