@@ -1,5 +1,5 @@
 // Reading IMU recordings from containers: a ROS 1 bag and an MCAP file of a 6 h, 200 Hz record
-// (4.32 M sensor_msgs Imu messages) against the target of < 3 s each, with the
+// (4.32 M sensor_msgs Imu messages) against the target of < 3 s each, with the
 // in-process baseline of reading the same file's bytes (read(2) into one buffer: what the page
 // cache and memory bandwidth allow). Files are written by the real writers
 // (bench/bench_containers.sh makes them once, then runs this):

@@ -1,5 +1,5 @@
 // Navigation error: covariance propagation of a 6 h flight at 1 s steps, and 1000 Monte-Carlo
-// runs of 1 h (issue 12's target: < 5 s on 2 cores). Baselines in the same process: the
+// runs of 1 h (target: < 5 s on 2 cores). Baselines in the same process: the
 // step-by-step covariance propagation (the doubling's reference) and the simulator alone
 // producing the Monte Carlo's gyro samples (its floor).
 // Run (Release): ./build/default/bench/bench_nav --benchmark_counters_tabular=true

@@ -3,7 +3,7 @@
 // Baseline in the same process: one pass that only sums the four inputs (the memory-bandwidth
 // floor of reading them), and the same fusion without detection.
 // Run (Release): ./build/default/bench/bench_redundant --benchmark_counters_tabular=true
-// The "sensor_samples/s" counter is the figure quoted in docs/performance.md (issue 13 target:
+// The "sensor_samples/s" counter is the figure quoted in docs/performance.md (target:
 // >= 5e7 on 2 cores with detection).
 #include <benchmark/benchmark.h>
 

@@ -1,4 +1,4 @@
-// Text input speed: one column of a CSV "t,gx,gy" written with %.9e (the case of issue 18:
+// Text input speed: one column of a CSV "t,gx,gy" written with %.9e (the large-file case:
 // 1e7 rows, 495 MB) read by read_text_file in three ways, side by side in one run:
 //   line_by_line_1thread  the plain single-threaded line-by-line read (bulk_rows = false)
 //   bulk_1thread          the bulk row parser on one thread

@@ -1,4 +1,4 @@
-// The total, Theo1 and time-error estimators against the targets, and against the
+// The total, Theo1 and time-error estimators against their speed targets, and against the
 // literal definitions kept in the tests (tests/core/reference_total.hpp) as an in-process naive
 // baseline. Run by hand (Release):
 //   build/default/bench/bench_total --benchmark_counters_tabular=true
@@ -77,7 +77,7 @@ void naive(benchmark::State& state, Estimator e) {
   state.counters["taus"] = static_cast<double>(factors.size());
 }
 
-// 4,000 samples: the AllanTools comparison (31 s mtotdev, ~4 s theo1).
+// 4,000 samples: the size of the AllanTools comparison (31 s mtotdev, ~4 s theo1).
 BENCHMARK_CAPTURE(fast, totdev_4k, Estimator::totdev, 0)->Arg(4000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(fast, mtotdev_4k, Estimator::mtotdev, 310)->Arg(4000)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(fast, htotdev_4k, Estimator::htotdev, 0)->Arg(4000)->Unit(benchmark::kMillisecond);

@@ -173,8 +173,9 @@ void setup_dev(CLI::App& app) {
   command->add_flag("--force", options->output.force, "replace an existing output file");
   command->add_flag("--mpi", options->mpi,
                     "under mpirun: each rank reads its own slice of the file, the sums of adev "
-                    "oadev mdev tdev hdev ohdev are merged in a tree (no confidence intervals; "
-                    "docs/scale.md)");
+                    "oadev mdev tdev hdev ohdev are merged in a tree; confidence intervals count "
+                    "the whole record, with the noise type identified on rank 0's slice "
+                    "(docs/scale.md)");
   command->callback([options] { run_dev(*options); });
 }
 

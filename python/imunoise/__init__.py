@@ -56,7 +56,7 @@ theobr = _estimator("theobr")
 mtie = _estimator("mtie")
 tierms = _estimator("tierms")
 
-# Recordings and preprocessing (issue 16, register_recording.cpp): imunoise.read(path, topic=...,
+# Recordings and preprocessing (register_recording.cpp): imunoise.read(path, topic=...,
 # dataset=..., ...) -> Recording (channel_names, units, rec["gyro_x"], time_s, rate, source);
 # imunoise.dev(data, rate, estimators=..., time=..., skip=..., gaps="split", temperature=...)
 # -> the document of `imunoise dev --format json`. imunoise.fit takes the same keywords.

@@ -11,7 +11,7 @@ void register_nav(py::module_& m);
 void register_allantools(py::module_& m);
 void register_redundant(py::module_& m);
 void register_study(py::module_& m);
-void register_recording(py::module_& m);  // imunoise.read, imunoise.dev (issue 16)
+void register_recording(py::module_& m);  // imunoise.read, imunoise.dev (recordings, preprocessing)
 }
 
 PYBIND11_MODULE(_imunoise, m) {

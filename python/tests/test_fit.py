@@ -108,7 +108,7 @@ def test_gauss_markov_term_is_found_and_reported():
     assert not r["terms"]["SIN"]["test"]["selected"]
 
 
-# The command line's fit switches (issue 15): tau_min/tau_max, keep_short_taus, exact_model,
+# The command line's fit switches for real sensors: tau_min/tau_max, keep_short_taus, exact_model,
 # auto_terms.
 
 @pytest.fixture(scope="module")

@@ -1,4 +1,4 @@
-"""imunoise.read and the preprocessing keywords of imunoise.dev / imunoise.fit (issue 16).
+"""imunoise.read and the preprocessing keywords of imunoise.dev / imunoise.fit.
 
 Files are written here by the real libraries (python3-h5py, python3-rosbag: Debian packages) and
 in the EuRoC layout, and read back to the bit; the preprocessing keywords must give the same

@@ -8,11 +8,12 @@
 #include <string>
 #include <vector>
 
+#include <fmt/core.h>
+
 #include "extra_terms_fit.hpp"
 #include "imunoise/confidence/edf.hpp"
 #include "imunoise/confidence/interval.hpp"
 #include "imunoise/sim/gauss_markov.hpp"
-#include "format.hpp"
 #include "least_squares.hpp"
 
 namespace imunoise::fit {
@@ -651,18 +652,18 @@ void describe(const ExtraFitter& f, const Candidate& c, int e, double penalty, i
   const bool dominant = t->dominant_taus >= min_dominant || (relaxed && shaped >= min_dominant);
   t->selected = strong && dominant && c.fit.theta(e) > 0.0;
   if (t->selected) {
-    t->verdict = strf("kept: it lowers chi^2 by %.3g (BIC price of its 2 parameters %.3g) and "
-                        "dominates the model at %d taus (seen beyond 2 sd at %d)",
-                        c.delta[e], penalty, t->dominant_taus, shaped);
+    t->verdict = fmt::format("kept: it lowers chi^2 by {:.3g} (BIC price of its 2 parameters {:.3g}) and "
+                               "dominates the model at {} taus (seen beyond 2 sd at {})",
+                               c.delta[e], penalty, t->dominant_taus, shaped);
   } else if (!strong) {
-    t->verdict = strf("not identified: adding it lowers chi^2 by %.3g only, not more than the "
-                        "BIC price of its 2 parameters (%.3g)",
-                        c.delta[e], penalty);
+    t->verdict = fmt::format("not identified: adding it lowers chi^2 by {:.3g} only, not more than the "
+                               "BIC price of its 2 parameters ({:.3g})",
+                               c.delta[e], penalty);
   } else {
-    t->verdict = strf("not identified: it dominates the model at %d taus and is seen beyond 2 sd "
-                        "at %d (needs %d): it cannot be separated from the power-law terms on "
-                        "this tau range",
-                        t->dominant_taus, shaped, min_dominant);
+    t->verdict = fmt::format("not identified: it dominates the model at {} taus and is seen beyond 2 sd "
+                               "at {} (needs {}): it cannot be separated from the power-law terms on "
+                               "this tau range",
+                               t->dominant_taus, shaped, min_dominant);
   }
 }
 
@@ -691,9 +692,9 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
   std::size_t power_law_count = 0;
   for (bool t : options.terms) power_law_count += t;
   if (k < power_law_count + 2 * requested.size() + 2) {
-    mark_untested(strf("not tested: %zu taus are too few for the power-law terms plus 2 "
-                         "parameters per optional term (use a denser --taus grid)",
-                         k));
+    mark_untested(fmt::format("not tested: {} taus are too few for the power-law terms plus 2 "
+                                "parameters per optional term (use a denser --taus grid)",
+                                k));
     return;
   }
   const ExtraFitter fitter(curve, n_phase, tau0_s, options, result, starts, automatic);
@@ -756,11 +757,11 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
       } else {
         fitter.nonlinear_interval(*chosen, e, q, &iv.p_lo, &iv.p_hi, &iv.b_lo, &iv.b_hi);
         if (!(iv.b_lo && iv.b_hi)) {
-          failed_why[e] = strf("not identified: its %s is not bounded by the data (the profile "
-                               "interval reaches the end of the searched range %.4g .. %.4g %s)",
-                               e == kGM ? "correlation time" : "frequency",
-                               fitter.grids().of(e).front(), fitter.grids().of(e).back(),
-                               e == kGM ? "s" : "Hz");
+          failed_why[e] = fmt::format("not identified: its {} is not bounded by the data (the profile "
+                                      "interval reaches the end of the searched range {:.4g} .. {:.4g} {})",
+                                      e == kGM ? "correlation time" : "frequency",
+                                      fitter.grids().of(e).front(), fitter.grids().of(e).back(),
+                                      e == kGM ? "s" : "Hz");
         }
       }
       if (!failed_why[e].empty()) {
@@ -790,9 +791,9 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
       t.verdict = failed_why[e];
     } else if (!kept && tests[e].selected) {
       // Supported only together with the other term, which then failed its interval checks.
-      t.verdict = strf("not kept: it passed only together with the %s, which failed its "
-                       "interval checks; alone: %s",
-                       long_name(e == kGM ? kSIN : kGM), single_tests[e].verdict.c_str());
+      t.verdict = fmt::format("not kept: it passed only together with the {}, which failed its "
+                              "interval checks; alone: {}",
+                              long_name(e == kGM ? kSIN : kGM), single_tests[e].verdict);
     }
     Intervals iv = checked[e];  // computed on `chosen` when kept
     if (!kept) fitter.linear_interval(c, e, q, &iv.lo, &iv.hi, &iv.bounded);
@@ -813,7 +814,7 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
       if (!iv.bounded) amp.note += "; the data do not bound it from above (ci_high is the last value tried)";
       par.ci_low = par.ci_high = std::numeric_limits<double>::quiet_NaN();
       // The best trial value, for the record (what the fit would have said).
-      par.note = t.verdict + strf("; best trial value %.4g", c.fit.p.of(e));
+      par.note = t.verdict + fmt::format("; best trial value {:.4g}", c.fit.p.of(e));
     }
     if (e == kGM) coefs.gauss_markov = GaussMarkovTerm{amp, par};
     else coefs.sinusoid = SinusoidTerm{amp, par};
@@ -858,9 +859,9 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
       coef.ci_low = 0.0;
       coef.identified = false;
       coef.note = !sufficient
-                      ? strf("joint fit with %s: dominates the model at %d taus and is seen "
-                               "beyond 2 sd at %d (needs %d); ci_high is an upper limit",
-                               with.c_str(), dom, seen, options.min_dominant_taus)
+                      ? fmt::format("joint fit with {}: dominates the model at {} taus and is seen "
+                                      "beyond 2 sd at {} (needs {}); ci_high is an upper limit",
+                                      with, dom, seen, options.min_dominant_taus)
                       : "joint fit with " + with + ": zero is inside its profile interval; "
                         "ci_high is the upper limit";
     }
@@ -914,16 +915,16 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
                                   [](const std::string& w) { return w.rfind("chi2/dof", 0) == 0; }),
                    s.warnings.end());
   if (c.scatter2 > 0.0) {
-    s.warnings.push_back(strf(
-        "chi2/dof = %.3g: the model with %s does not describe the curve to within its sampling "
-        "noise; the curve scatters about it by %.3g%% of sigma^2 per tau, and the weights and "
-        "intervals include that scatter (chi2/dof with it %.3g)",
-        s.chi2_dof, with.c_str(), 100 * s.mismatch_scatter, s.chi2_dof_with_mismatch));
+    s.warnings.push_back(fmt::format(
+        "chi2/dof = {:.3g}: the model with {} does not describe the curve to within its sampling "
+        "noise; the curve scatters about it by {:.3g}% of sigma^2 per tau, and the weights and "
+        "intervals include that scatter (chi2/dof with it {:.3g})",
+        s.chi2_dof, with, 100 * s.mismatch_scatter, s.chi2_dof_with_mismatch));
   } else if (s.dof > 0 && s.chi2_dof > 4.0) {
-    s.warnings.push_back(strf("chi2/dof = %.3g: the model with %s does not describe the curve "
-                              "well (another term, drift, or non-stationary data?); intervals are "
-                              "too narrow",
-                              s.chi2_dof, with.c_str()));
+    s.warnings.push_back(fmt::format("chi2/dof = {:.3g}: the model with {} does not describe the curve "
+                                     "well (another term, drift, or non-stationary data?); intervals are "
+                                     "too narrow",
+                                     s.chi2_dof, with));
   }
   const double n = coefs.random_walk.value, kk = coefs.rate_random_walk.value;
   result.tau_opt_s = n > 0 && kk > 0 ? std::sqrt(3.0) * n / kk : 0.0;

@@ -11,19 +11,17 @@
 
 #include <Eigen/Dense>
 #include <boost/math/distributions/normal.hpp>
+#include <fmt/core.h>
 
 #include "imunoise/allan.hpp"
 #include "imunoise/confidence/edf.hpp"
 #include "imunoise/confidence/interval.hpp"
 #include "imunoise/error.hpp"
 #include "extra_terms_fit.hpp"
-#include "format.hpp"
 #include "least_squares.hpp"
 
 namespace imunoise::fit {
 namespace {
-
-using detail::strf;
 
 constexpr double kFloor = 2.0 * std::numbers::ln2 / std::numbers::pi;  // B^2 -> sigma^2 floor
 
@@ -328,33 +326,33 @@ void try_automatic_terms(const Curve& curve, std::size_t n_phase, double tau0_s,
   detail::fit_extra_terms({curve.m, curve.tau, curve.avar}, n_phase, tau0_s, with, trial, &starts,
                           true);
   std::string where;
-  for (double t : concave) where += (where.empty() ? "" : ", ") + strf("%g s", t);
+  for (double t : concave) where += (where.empty() ? "" : ", ") + fmt::format("{:g} s", t);
   const bool gm = trial.extras.gauss_markov.selected, sin = trial.extras.sinusoid.selected;
   const double chi2_dof_power_law = result.summary.chi2_dof;
   if (!gm && !sin) {
-    result.summary.warnings.push_back(strf(
+    result.summary.warnings.push_back(fmt::format(
         "the Gauss-Markov and sinusoid terms were tried automatically (the power-law model is "
-        "rejected, chi2/dof %.3g, and the curve has bumps at %s) and not kept: Gauss-Markov: "
-        "%s; sinusoid: %s",
-        chi2_dof_power_law, where.c_str(), trial.extras.gauss_markov.verdict.c_str(),
-        trial.extras.sinusoid.verdict.c_str()));
+        "rejected, chi2/dof {:.3g}, and the curve has bumps at {}) and not kept: Gauss-Markov: "
+        "{}; sinusoid: {}",
+        chi2_dof_power_law, where, trial.extras.gauss_markov.verdict,
+        trial.extras.sinusoid.verdict));
     return;
   }
   trial.extras.automatic = true;
   std::string added;
   if (gm && trial.coefficients.gauss_markov) {
-    added = strf("a Gauss-Markov term (T_c = %.3g s) [%s]",
-                 trial.coefficients.gauss_markov->correlation_time_s.value,
-                 trial.extras.gauss_markov.verdict.c_str());
+    added = fmt::format("a Gauss-Markov term (T_c = {:.3g} s) [{}]",
+                        trial.coefficients.gauss_markov->correlation_time_s.value,
+                        trial.extras.gauss_markov.verdict);
   }
   if (sin && trial.coefficients.sinusoid) {
-    added += strf("%sa sinusoid (f0 = %.4g Hz) [%s]", added.empty() ? "" : " and ",
-                  trial.coefficients.sinusoid->frequency_hz.value,
-                  trial.extras.sinusoid.verdict.c_str());
+    added += fmt::format("{}a sinusoid (f0 = {:.4g} Hz) [{}]", added.empty() ? "" : " and ",
+                         trial.coefficients.sinusoid->frequency_hz.value,
+                         trial.extras.sinusoid.verdict);
   }
-  trial.extras.reason = strf("the power-law model is rejected (chi2/dof %.3g) and the curve has "
-                             "bumps (concave bends or the largest excess over the model) at %s",
-                             chi2_dof_power_law, where.c_str());
+  trial.extras.reason = fmt::format("the power-law model is rejected (chi2/dof {:.3g}) and the curve has "
+                                    "bumps (concave bends or the largest excess over the model) at {}",
+                                    chi2_dof_power_law, where);
   ts.warnings.push_back("added automatically: " + added + ", because " + trial.extras.reason +
                         "; no sum of power laws makes a bump. --no-auto-terms fits the power "
                         "laws alone");
@@ -424,7 +422,7 @@ bool FitOptions::IsValid(std::string* error) const {
     return fail("tau_min and tau_max must be finite and >= 0 (0: no limit)");
   }
   if (tau_max_s > 0.0 && tau_min_s > 0.0 && !(tau_max_s > tau_min_s)) {
-    return fail(strf("tau_max (%g s) must be above tau_min (%g s)", tau_max_s, tau_min_s));
+    return fail(fmt::format("tau_max ({:g} s) must be above tau_min ({:g} s)", tau_max_s, tau_min_s));
   }
   if (!(mismatch_test_alpha > 0.0 && mismatch_test_alpha < 1.0)) {
     return fail("mismatch_test_alpha must be in (0, 1)");
@@ -436,8 +434,8 @@ bool FitOptions::IsValid(std::string* error) const {
 }
 
 std::string FitSummary::BriefReport() const {
-  return strf("fit: %s after %d iteration(s), %zu taus, chi2/dof = %.3g (%zu dof)",
-              termination_name(termination).c_str(), iterations, points_used, chi2_dof, dof);
+  return fmt::format("fit: {} after {} iteration(s), {} taus, chi2/dof = {:.3g} ({} dof)",
+                     termination_name(termination), iterations, points_used, chi2_dof, dof);
 }
 
 std::string FitSummary::FullReport() const {
@@ -522,8 +520,8 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
       kept.avar.push_back(curve.avar[i]);
     }
     if (kept.tau.size() < curve.tau.size()) {
-      summary.warnings.push_back(strf(
-          "%zu tau(s) outside the requested range [%g, %g] s were left out of the fit",
+      summary.warnings.push_back(fmt::format(
+          "{} tau(s) outside the requested range [{:g}, {:g}] s were left out of the fit",
           curve.tau.size() - kept.tau.size(), options.tau_min_s,
           options.tau_max_s > 0.0 ? options.tau_max_s : std::numeric_limits<double>::infinity()));
     }
@@ -539,9 +537,9 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
           if (full_curve.m[f] == curve.m[i]) excluded_index.push_back(f);
         }
       }
-      summary.warnings.push_back(strf(
-          "the %zu shortest tau(s) (%g to %g s) were left out: the curve bends concavely at "
-          "tau = %g s (its log-log slope falls with tau), which no sum of the model's power laws "
+      summary.warnings.push_back(fmt::format(
+          "the {} shortest tau(s) ({:g} to {:g} s) were left out: the curve bends concavely at "
+          "tau = {:g} s (its log-log slope falls with tau), which no sum of the model's power laws "
           "can do; at the shortest taus this is the sensor's sampling chain (anti-alias filter, "
           "decimation, an axis updated below the output rate). Use --tau-min to choose "
           "yourself",
@@ -570,12 +568,12 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
     for (bool d : drop) kept_count += !d;
     if (!bends.empty() && kept_count >= fitted.size() + 2) {
       std::string where;
-      for (std::size_t b : bends) where += (where.empty() ? "" : ", ") + strf("%g s", curve.tau[b]);
-      bend_warning = strf(
-          "the curve bends concavely (a bump) at tau = %s: no sum of the model's power laws can; "
+      for (std::size_t b : bends) where += (where.empty() ? "" : ", ") + fmt::format("{:g} s", curve.tau[b]);
+      bend_warning = fmt::format(
+          "the curve bends concavely (a bump) at tau = {}: no sum of the model's power laws can; "
           "a sinusoid or a bounded correlated process (try --terms Q,N,B,K,SIN or GM); the bend "
           "and its neighbouring taus were left out of the power-law fit",
-          where.c_str());
+          where);
       summary.warnings.push_back(bend_warning);
       Curve kept;
       for (std::size_t i = 0; i < curve.tau.size(); ++i) {
@@ -600,9 +598,9 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
   if (curve.tau.empty()) return nothing(Termination::too_few_points, "no tau left in the requested range");
   if (curve.tau.size() < fitted.size() + 1 && options.method != Method::slope) {
     return nothing(Termination::too_few_points,
-                   strf("%zu taus are too few to fit %zu terms (need at least %zu); use a "
-                        "denser tau grid or a longer record",
-                        curve.tau.size(), fitted.size(), fitted.size() + 1));
+                   fmt::format("{} taus are too few to fit {} terms (need at least {}); use a "
+                               "denser tau grid or a longer record",
+                               curve.tau.size(), fitted.size(), fitted.size() + 1));
   }
   if (curve.tau.size() < 3 && options.method == Method::slope) {
     return nothing(Termination::too_few_points, "the slope method needs at least 3 taus");
@@ -659,9 +657,9 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
         c.ci_low = 0.0;
         c.ci_high = ci.high * scale;
         c.identified = false;
-        c.note = strf("the curve never shows the slope %+g of this term (local slope %+.2f "
-                      "at the tangent point tau = %.4g s): upper limit only",
-                      kTermSlope[j], slope, curve.tau[best]);
+        c.note = fmt::format("the curve never shows the slope {:+g} of this term (local slope {:+.2f} "
+                             "at the tangent point tau = {:.4g} s): upper limit only",
+                             kTermSlope[j], slope, curve.tau[best]);
       }
     }
     summary.termination = Termination::converged;
@@ -840,7 +838,7 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
     return true;
     };
     if (!run_wls()) return nothing(Termination::degenerate_input, "no non-negative model fits the curve");
-    // Model mismatch (issue 15): when the chi^2 test rejects the model, estimate the scatter
+    // Model mismatch (real sensors are not exact sums of power laws): when the chi^2 test rejects the model, estimate the scatter
     // and refit with it (its weights depend on the model, so iterate to a fixed point).
     if (options.model_mismatch && k > free_set.size()) {
       const double dof = static_cast<double>(k - free_set.size());
@@ -966,20 +964,20 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
       coef.ci_low = 0.0;
       coef.identified = false;
       if (theta(j) < 0.0) {
-        coef.note = strf("the fit gave a negative variance coefficient %s^2 < 0 "
-                         "(ill-conditioned or absent term): its square root of the absolute "
-                         "value, as the paper printed, is not a measurement; ci_high is an upper "
-                         "limit",
-                         term_name(j));
+        coef.note = fmt::format("the fit gave a negative variance coefficient {}^2 < 0 "
+                                "(ill-conditioned or absent term): its square root of the absolute "
+                                "value, as the paper printed, is not a measurement; ci_high is an upper "
+                                "limit",
+                                term_name(j));
       } else if (theta(j) == 0.0) {
-        coef.note = strf("term not supported by the data (estimate clamped at zero or "
-                         "rejected by the information criterion); ci_high is the %g%% upper "
-                         "limit",
-                         100 * options.level);
+        coef.note = fmt::format("term not supported by the data (estimate clamped at zero or "
+                                "rejected by the information criterion); ci_high is the {:g}% upper "
+                                "limit",
+                                100 * options.level);
       } else {
-        coef.note = strf("the estimate is not significant at %g%% (zero is inside its "
-                         "interval); ci_high is the upper limit",
-                         100 * options.level);
+        coef.note = fmt::format("the estimate is not significant at {:g}% (zero is inside its "
+                                "interval); ci_high is the upper limit",
+                                100 * options.level);
       }
     }
   }
@@ -988,10 +986,10 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
     result.terms[j].estimate = std::sqrt(dropped_theta[j]);
     auto& coef = coefficient(result.coefficients, j);
     if (!coef.identified) {
-      coef.note = strf("dominates the fitted model at fewer than %d taus of this record: it "
-                       "cannot be separated from its neighbours (record too short or tau range "
-                       "too narrow for this term); ci_high is an upper limit",
-                       options.min_dominant_taus);
+      coef.note = fmt::format("dominates the fitted model at fewer than {} taus of this record: it "
+                              "cannot be separated from its neighbours (record too short or tau range "
+                              "too narrow for this term); ci_high is an upper limit",
+                              options.min_dominant_taus);
     }
   }
 
@@ -1015,15 +1013,15 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
     sd_points[i] = std::sqrt(std::max(0.0, sigma_sampling(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i))));
   }
   if (summary.dof > 0 && scatter_fitted > 0.0) {
-    summary.warnings.push_back(strf(
-        "chi2/dof = %.3g: the power-law model does not describe the curve to within its sampling "
+    summary.warnings.push_back(fmt::format(
+        "chi2/dof = {:.3g}: the power-law model does not describe the curve to within its sampling "
         "noise (a real sensor: temperature, a Gauss-Markov or sinusoidal term, a floor that is "
-        "not exactly 1/f); the curve scatters about the model by %.3g%% of sigma^2 per tau, and "
-        "the weights and intervals include that scatter (chi2/dof with it %.3g)",
+        "not exactly 1/f); the curve scatters about the model by {:.3g}% of sigma^2 per tau, and "
+        "the weights and intervals include that scatter (chi2/dof with it {:.3g})",
         summary.chi2_dof, 100 * summary.mismatch_scatter, summary.chi2_dof_with_mismatch));
   } else if (summary.dof > 0 && summary.chi2_dof > 4.0) {
-    summary.warnings.push_back(strf(
-        "chi2/dof = %.3g: the power-law model does not describe the curve well (a Gauss-Markov "
+    summary.warnings.push_back(fmt::format(
+        "chi2/dof = {:.3g}: the power-law model does not describe the curve well (a Gauss-Markov "
         "or sinusoidal term, drift, or non-stationary data?); intervals are too narrow",
         summary.chi2_dof));
   }
@@ -1069,7 +1067,7 @@ Coefficient& coefficient(NoiseCoefficients& c, int term) {
 std::vector<std::string> record_warnings(std::span<const double> phase_si, double tau0_s) {
   const std::size_t n = phase_si.size();
   if (n < 5) {
-    throw InputError(strf("fit: %zu angle samples are too few (need at least 5)", n));
+    throw InputError(fmt::format("fit: {} angle samples are too few (need at least 5)", n));
   }
   std::vector<std::string> warnings;
   // Input checks on the rate (first differences of the phase), on up to 1e6 samples.
@@ -1088,9 +1086,9 @@ std::vector<std::string> record_warnings(std::span<const double> phase_si, doubl
       }
       const double frac = static_cast<double>(std::max(at_lo, at_hi)) / static_cast<double>(count);
       if (frac > 1e-3 && std::max(at_lo, at_hi) > 5) {
-        warnings.push_back(strf("%.2g%% of the samples sit at the record's extreme value: "
-                                       "saturated data? the fit assumes an unclipped sensor",
-                                       100 * frac));
+        warnings.push_back(fmt::format("{:.2g}% of the samples sit at the record's extreme value: "
+                                              "saturated data? the fit assumes an unclipped sensor",
+                                              100 * frac));
       }
       std::vector<double> sorted = rate;
       std::sort(sorted.begin(), sorted.end());
@@ -1099,9 +1097,9 @@ std::vector<std::string> record_warnings(std::span<const double> phase_si, doubl
       std::size_t distinct = 1;
       for (std::size_t i = 1; i < sorted.size(); ++i) distinct += (sorted[i] - sorted[i - 1] > tol);
       if (distinct < 64 && count >= 1000) {
-        warnings.push_back(strf("the rate takes only %zu distinct values: quantized data; the "
-                                       "quantization appears as white angle noise (Q) at short tau",
-                                       distinct));
+        warnings.push_back(fmt::format("the rate takes only {} distinct values: quantized data; the "
+                                              "quantization appears as white angle noise (Q) at short tau",
+                                              distinct));
       }
     }
   }

@@ -4,9 +4,9 @@
 #include <numbers>
 
 #include <Eigen/Eigenvalues>
+#include <fmt/core.h>
 
 #include "error_model.hpp"
-#include "text.hpp"
 #include "imunoise/nav/models.hpp"
 #include "imunoise/nav/paper.hpp"
 #include "imunoise/nav/schuler.hpp"
@@ -75,16 +75,15 @@ ModelSeries paper_series(const NavOptions& o, const AxisTerms& terms, const std:
   const double eps = o.paper_sigma_eps_rad_s ? *o.paper_sigma_eps_rad_s
                                               : terms[1].n_rad_sqrt_s * 1.0;  // N's value read as a rate (x 1/sqrt(s))
   s.paper_sigma_eps_rad_s = eps;
-  using detail::g6;
-  s.assumptions =
+  s.assumptions = fmt::format(
       "the paper's eq. 6 as published: lat = (e/w0)|cos w0t - 1|, path = (e R/w0)|sin w0t - w0t|, "
-      "lon = (e/w0)|sin w0t - w0t| with w0 = sqrt(g/R) = " + g6(w0) + " rad/s and sigma_eps e = " +
-      g6(eps * 180.0 / std::numbers::pi) + " deg/s (" +
-      (o.paper_sigma_eps_rad_s ? "given" : "the paper's reading: the east gyro's N value, deg/sqrt(s) read as deg/s") +
-      "); the latitude line is the velocity-error shape, not the drift's latitude response; no latitude "
+      "lon = (e/w0)|sin w0t - w0t| with w0 = sqrt(g/R) = {:.6g} rad/s and sigma_eps e = {:.6g} deg/s ({}); "
+      "the latitude line is the velocity-error shape, not the drift's latitude response; no latitude "
       "factor on longitude; east = R lon, radial = sqrt(2) path (the paper gives none); reproduces the "
       "published 3.9 deg longitude at 1 h from gyro 1's N = 8.9e-4, not 0.37 deg nor 22.6 km "
-      "(docs/navigation.md)";
+      "(docs/navigation.md)",
+      w0, eps * 180.0 / std::numbers::pi,
+      o.paper_sigma_eps_rad_s ? "given" : "the paper's reading: the east gyro's N value, deg/sqrt(s) read as deg/s");
   for (double t : t_s) {
     s.t_s.push_back(t);
     const double lat = paper::latitude_rad(eps, t, w0);
@@ -104,15 +103,13 @@ ModelSeries schuler_series(const NavOptions& o, const AxisTerms& terms, const st
   s.model = Model::schuler;
   const double w0 = w0_of(o);
   const detail::FlickerRange range = detail::flicker_range(o);
-  using detail::g6;
-  s.assumptions =
-      "single-channel Schuler loop per level axis (w0 = sqrt(g/R) = " + g6(w0) + " rad/s, R = " +
-      g6(o.earth.radius_m) + " m, g = " + g6(o.earth.gravity_m_s2) +
-      " m/s^2), closed forms per noise term added in variance: constant drift, ramp, white (N), rate random "
-      "walk (K), Gauss-Markov, quantization (white angle noise at dt = " + g6(o.dt_s) +
-      " s); B as the simulator's Gauss-Markov bank over [" + g6(range.tau_min_s) + ", " + g6(range.tau_max_s) +
-      "] s; east gyro -> north error (latitude, path), north gyro -> east error (longitude = east / (R cos L)); "
-      "no Earth rate, no coupling, down gyro ignored";
+  s.assumptions = fmt::format(
+      "single-channel Schuler loop per level axis (w0 = sqrt(g/R) = {:.6g} rad/s, R = {:.6g} m, g = {:.6g} "
+      "m/s^2), closed forms per noise term added in variance: constant drift, ramp, white (N), rate random "
+      "walk (K), Gauss-Markov, quantization (white angle noise at dt = {:.6g} s); B as the simulator's "
+      "Gauss-Markov bank over [{:.6g}, {:.6g}] s; east gyro -> north error (latitude, path), north gyro -> "
+      "east error (longitude = east / (R cos L)); no Earth rate, no coupling, down gyro ignored",
+      w0, o.earth.radius_m, o.earth.gravity_m_s2, o.dt_s, range.tau_min_s, range.tau_max_s);
   for (double t : t_s) {
     s.t_s.push_back(t);
     const double var_n = channel_variance(terms[1], range, o.dt_s, t, w0);
@@ -127,16 +124,16 @@ ModelSeries covariance_series(const NavOptions& o, const AxisTerms& terms, const
   s.model = Model::covariance;
   const detail::DiscreteModel d = detail::discrete_model(o, terms);
   const detail::FlickerRange range = detail::flicker_range(o);
-  using detail::g6;
-  s.assumptions =
-      "linearised NED error model of a stationary level INS at latitude " + g6(o.latitude_rad * 180.0 / std::numbers::pi) +
-      " deg: both horizontal channels and the azimuth (phi-angle form, Titterton & Weston ch. 12), " +
-      (o.earth_rate ? "with Earth rate and Coriolis coupling" : "Earth rate and Coriolis off") +
-      "; vertical channel not modelled; noise as states (rate random walk, bias, ramp, Gauss-Markov, B as the "
-      "simulator's Gauss-Markov bank over [" + g6(range.tau_min_s) + ", " + g6(range.tau_max_s) +
-      "] s, quantization at dt); exact discrete transition exp(F dt) and Van Loan noise at dt = " + g6(o.dt_s) +
-      " s; P <- Phi P Phi' + Qd (a sum of positive semi-definite terms), composed by doubling to the reporting step, symmetrized after every product; " +
-      std::to_string(d.phi.rows()) + " states";
+  s.assumptions = fmt::format(
+      "linearised NED error model of a stationary level INS at latitude {:.6g} deg: both horizontal "
+      "channels and the azimuth (phi-angle form, Titterton & Weston ch. 12), {}; vertical channel not "
+      "modelled; noise as states (rate random walk, bias, ramp, Gauss-Markov, B as the simulator's "
+      "Gauss-Markov bank over [{:.6g}, {:.6g}] s, quantization at dt); exact discrete transition exp(F dt) "
+      "and Van Loan noise at dt = {:.6g} s; P <- Phi P Phi' + Qd (a sum of positive semi-definite terms), "
+      "composed by doubling to the reporting step, symmetrized after every product; {} states",
+      o.latitude_rad * 180.0 / std::numbers::pi,
+      o.earth_rate ? "with Earth rate and Coriolis coupling" : "Earth rate and Coriolis off", range.tau_min_s,
+      range.tau_max_s, o.dt_s, d.phi.rows());
   // The discrete model is exact at dt; between reported times its m-fold composition
   // (Phi^m, sum_j Phi^j Qd Phi^j') is formed by doubling, which is the same propagation in
   // log2(m) products instead of m.

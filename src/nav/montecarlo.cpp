@@ -7,9 +7,9 @@
 #include <numbers>
 #include <thread>
 
+#include <fmt/core.h>
 
 #include "error_model.hpp"
-#include "text.hpp"
 #include "imunoise/nav/models.hpp"
 #include "imunoise/sim/generator.hpp"
 #include "imunoise/sim/rng.hpp"
@@ -180,14 +180,14 @@ ModelSeries montecarlo_series(const NavOptions& o, const AxisTerms& terms, const
     st.se_rms_radial_m.push_back(rmsr > 0 ? r * se_msr / (2 * rmsr) : 0.0);
   }
   s.montecarlo = std::move(st);
-  s.assumptions =
-      std::string("the covariance model's nav error states (same F, Earth rate ") + (o.earth_rate ? "on" : "off") +
-      ") driven by gyro samples from the project's simulator at " + detail::g6(rate_hz) +
-      " Hz (each sample the exact average of the continuous noise over dt; the states see it as piecewise "
-      "constant); " + std::to_string(runs) + " runs, seed " + std::to_string(o.seed) +
-      " (run r: SplitMix64 of seed + r golden, channel = axis), any thread count; RMS over runs with standard "
-      "errors (delta method on the mean square); bias and ramp are deterministic in each run (positive sign), "
-      "so their share of the RMS is exact and the mean is not zero when they are present";
+  s.assumptions = fmt::format(
+      "the covariance model's nav error states (same F, Earth rate {}) driven by gyro samples from the "
+      "project's simulator at {:.6g} Hz (each sample the exact average of the continuous noise over dt; the "
+      "states see it as piecewise constant); {} runs, seed {} (run r: SplitMix64 of seed + r golden, channel "
+      "= axis), any thread count; RMS over runs with standard errors (delta method on the mean square); bias "
+      "and ramp are deterministic in each run (positive sign), so their share of the RMS is exact and the "
+      "mean is not zero when they are present",
+      o.earth_rate ? "on" : "off", rate_hz, runs, o.seed);
   return s;
 }
 

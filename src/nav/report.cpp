@@ -1,10 +1,11 @@
 #include "imunoise/nav/report.hpp"
 
 #include <cmath>
-#include <cstdio>
 #include <fstream>
 #include <numbers>
 #include <sstream>
+
+#include <fmt/core.h>
 
 #include "imunoise/error.hpp"
 #include "imunoise/nav/paper.hpp"
@@ -136,11 +137,9 @@ nlohmann::json report_json(const NavResult& r) {
 
 namespace {
 
-std::string num(double v, const char* format = "%.6g") {
-  if (!std::isfinite(v)) return "";
-  char b[64];
-  std::snprintf(b, sizeof b, format, v);
-  return b;
+/// v to `digits` significant digits (%g style); empty when not finite (a blank cell).
+std::string num(double v, int digits = 6) {
+  return std::isfinite(v) ? fmt::format("{:.{}g}", v, digits) : std::string();
 }
 
 std::string pad(const std::string& s, std::size_t width) {
@@ -159,20 +158,20 @@ std::string report_csv(const NavResult& r) {
   }
   out += "\n";
   for (std::size_t i = 0; i < r.t_s.size(); ++i) {
-    out += num(r.t_s[i], "%.10g");
+    out += num(r.t_s[i], 10);
     for (const ModelSeries& s : r.models) {
       auto cell = [&out](const std::string& text) {
         out += ',';
         out += text;
       };
-      cell(num(s.lat_rad[i] * kDeg, "%.9g"));
-      cell(r.longitude_defined ? num(s.lon_rad[i] * kDeg, "%.9g") : std::string());
-      cell(num(s.north_m[i], "%.9g"));
-      cell(num(s.east_m[i], "%.9g"));
-      cell(num(s.radial_m[i], "%.9g"));
+      cell(num(s.lat_rad[i] * kDeg, 9));
+      cell(r.longitude_defined ? num(s.lon_rad[i] * kDeg, 9) : std::string());
+      cell(num(s.north_m[i], 9));
+      cell(num(s.east_m[i], 9));
+      cell(num(s.radial_m[i], 9));
       if (s.montecarlo) {
-        cell(num(s.montecarlo->se_rms_north_m[i], "%.4g"));
-        cell(num(s.montecarlo->se_rms_radial_m[i], "%.4g"));
+        cell(num(s.montecarlo->se_rms_north_m[i], 4));
+        cell(num(s.montecarlo->se_rms_radial_m[i], 4));
       }
     }
     out += "\n";
@@ -225,20 +224,20 @@ std::string report_table(const NavResult& r) {
     out += pad(row.name, 18);
     for (const auto& s : r.models) {
       const std::vector<double>* v[] = {&s.lat_rad, &s.lon_rad, &s.north_m, &s.east_m, &s.radial_m};
-      std::string cell = num((*v[row.which])[i] * row.scale, "%.5g");
+      std::string cell = num((*v[row.which])[i] * row.scale, 5);
       if (s.montecarlo && row.which >= 2) {
         const auto& st = *s.montecarlo;
         const double se = row.which == 2 ? st.se_rms_north_m[i] : row.which == 3 ? st.se_rms_east_m[i] : st.se_rms_radial_m[i];
-        cell += " +- " + num(se * row.scale, "%.2g");
+        cell += " +- " + num(se * row.scale, 2);
       } else if (s.montecarlo) {
         const double se = row.which == 0 ? st_lat_se(s, i) : st_lon_se(s, i, o);
-        cell += " +- " + num(se * row.scale, "%.2g");
+        cell += " +- " + num(se * row.scale, 2);
       }
       out += pad(cell, w);
     }
     if (published) {
       const double p[] = {pub.lat_deg, pub.lon_deg, pub.path_m * 1e-3};
-      out += row.which <= 2 ? pad(num(p[row.which], "%.5g"), w) : pad("-", w);
+      out += row.which <= 2 ? pad(num(p[row.which], 5), w) : pad("-", w);
     }
     out += "\n";
   }

@@ -6,28 +6,29 @@
 #include <numbers>
 #include <string>
 
+#include <fmt/core.h>
+
 #include "imunoise/error.hpp"
 #include "imunoise/sim/gauss_markov.hpp"
 #include "imunoise/sim/portable_math.hpp"
-#include "message.hpp"
 
 namespace imunoise::sim {
 
 FlickerBank design_flicker_bank(double b_unit, double tau_min_s, double tau_max_s) {
   if (!std::isfinite(b_unit) || b_unit < 0.0) {
-    throw InputError("bias instability B = " + detail::num(b_unit) + " must be finite and >= 0");
+    throw InputError(fmt::format("bias instability B = {:.10g} must be finite and >= 0", b_unit));
   }
   if (!std::isfinite(tau_min_s) || !std::isfinite(tau_max_s) || !(tau_min_s > 0.0) ||
       !(tau_max_s > tau_min_s)) {
-    throw InputError("flicker tau range [" + detail::num(tau_min_s) + ", " + detail::num(tau_max_s) +
-                     "] s is invalid: need 0 < tau_min < tau_max, both finite");
+    throw InputError(fmt::format("flicker tau range [{:.10g}, {:.10g}] s is invalid: need 0 < tau_min < tau_max, both finite",
+                                 tau_min_s, tau_max_s));
   }
   const double decades = std::log10(tau_max_s / tau_min_s);
   if (decades > kFlickerMaxDecades) {
-    throw InputError("flicker tau range [" + detail::num(tau_min_s) + ", " + detail::num(tau_max_s) +
-                     "] s spans " + detail::num(std::round(decades * 10.0) / 10.0) +
-                     " decades; the generator honours at most " + detail::num(kFlickerMaxDecades) +
-                     " (narrow the flicker tau range)");
+    throw InputError(fmt::format(
+        "flicker tau range [{:.10g}, {:.10g}] s spans {:.10g} decades; the generator honours at most {:.10g} "
+        "(narrow the flicker tau range)",
+        tau_min_s, tau_max_s, std::round(decades * 10.0) / 10.0, kFlickerMaxDecades));
   }
   FlickerBank bank;
   bank.tau_min_s = tau_min_s;

@@ -5,11 +5,11 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <string>
 #include <thread>
 
 #include "imunoise/error.hpp"
 #include "imunoise/sim/portable_math.hpp"
-#include "message.hpp"
 
 namespace imunoise::sim {
 namespace {

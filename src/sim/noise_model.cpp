@@ -4,27 +4,33 @@
 #include <cmath>
 #include <string>
 
+#include <fmt/core.h>
+
 #include "imunoise/error.hpp"
 #include "imunoise/sim/flicker.hpp"
-#include "message.hpp"
 
 namespace imunoise::sim {
 namespace {
 
-using detail::num;
+// Numbers in messages read as a user would type them: up to 10 significant digits ({:.10g}).
 
 void require_finite(double value, const char* name) {
   if (!std::isfinite(value)) {
-    throw InputError(std::string(name) + " = " + num(value) + " is not a finite number");
+    throw InputError(fmt::format("{} = {:.10g} is not a finite number", name, value));
   }
 }
 
 void require_non_negative(double value, const char* name, const char* what) {
   require_finite(value, name);
   if (value < 0.0) {
-    throw InputError(std::string(name) + " = " + num(value) + " is negative; " + what +
-                     " is an intensity: give its magnitude (>= 0)");
+    throw InputError(
+        fmt::format("{} = {:.10g} is negative; {} is an intensity: give its magnitude (>= 0)", name, value, what));
   }
+}
+
+std::string empty_flicker_range(double tau_min_s, double tau_max_s) {
+  return fmt::format("flicker tau range [{:.10g}, {:.10g}] s is empty: flicker-tau-max must exceed flicker-tau-min",
+                     tau_min_s, tau_max_s);
 }
 
 }  // namespace
@@ -44,20 +50,19 @@ void validate(const NoiseModel& m) {
   require_non_negative(m.flicker_tau_min_s, "flicker-tau-min", "a time");
   require_non_negative(m.flicker_tau_max_s, "flicker-tau-max", "a time");
   if (m.gm_sigma_unit > 0.0 && !(m.gm_time_s > 0.0)) {
-    throw InputError("gm-sigma = " + num(m.gm_sigma_unit) +
-                     " needs a positive Gauss-Markov correlation time (gm-tau, seconds)");
+    throw InputError(fmt::format("gm-sigma = {:.10g} needs a positive Gauss-Markov correlation time (gm-tau, seconds)",
+                                 m.gm_sigma_unit));
   }
   if (m.flicker_tau_min_s > 0.0 && m.flicker_tau_max_s > 0.0 &&
       !(m.flicker_tau_max_s > m.flicker_tau_min_s)) {
-    throw InputError("flicker tau range [" + num(m.flicker_tau_min_s) + ", " +
-                     num(m.flicker_tau_max_s) + "] s is empty: flicker-tau-max must exceed flicker-tau-min");
+    throw InputError(empty_flicker_range(m.flicker_tau_min_s, m.flicker_tau_max_s));
   }
 }
 
 void validate(const OutputStage& o) {
   if (std::isnan(o.range_unit) || !(o.range_unit > 0.0)) {
-    throw InputError("range = " + num(o.range_unit) +
-                     " must be positive (the measurement range, +-range in the rate unit)");
+    throw InputError(fmt::format("range = {:.10g} must be positive (the measurement range, +-range in the rate unit)",
+                                 o.range_unit));
   }
   require_finite(o.scale_factor, "scale factor");
   if (o.scale_factor == 0.0) {
@@ -69,35 +74,34 @@ void validate(const OutputStage& o) {
 
 void check_sampling(const NoiseModel& m, double rate_hz, double duration_s) {
   if (!std::isfinite(rate_hz) || !(rate_hz > 0.0)) {
-    throw InputError("rate = " + num(rate_hz) + " Hz must be positive and finite");
+    throw InputError(fmt::format("rate = {:.10g} Hz must be positive and finite", rate_hz));
   }
   if (!std::isfinite(duration_s) || !(duration_s > 0.0)) {
-    throw InputError("duration = " + num(duration_s) + " s must be positive and finite");
+    throw InputError(fmt::format("duration = {:.10g} s must be positive and finite", duration_s));
   }
   if (duration_s * rate_hz < 1.0 - 1e-9) {  // tolerance: n / rate * rate may round below n
-    throw InputError("duration " + num(duration_s) + " s is shorter than one sample at " +
-                     num(rate_hz) + " Hz (need duration >= 1/rate)");
+    throw InputError(fmt::format("duration {:.10g} s is shorter than one sample at {:.10g} Hz (need duration >= 1/rate)",
+                                 duration_s, rate_hz));
   }
   if (duration_s * rate_hz > 9.0e15) {
-    throw InputError("duration " + num(duration_s) + " s at " + num(rate_hz) +
-                     " Hz exceeds 9e15 samples");
+    throw InputError(fmt::format("duration {:.10g} s at {:.10g} Hz exceeds 9e15 samples", duration_s, rate_hz));
   }
   if (m.sine_amplitude_unit > 0.0 && rate_hz < 2.0 * m.sine_frequency_hz) {
-    throw InputError("rate " + num(rate_hz) + " Hz is below twice the sinusoid frequency " +
-                     num(m.sine_frequency_hz) + " Hz: sample at >= " +
-                     num(2.0 * m.sine_frequency_hz) + " Hz or lower sine-freq");
+    throw InputError(fmt::format(
+        "rate {:.10g} Hz is below twice the sinusoid frequency {:.10g} Hz: sample at >= {:.10g} Hz or lower sine-freq",
+        rate_hz, m.sine_frequency_hz, 2.0 * m.sine_frequency_hz));
   }
   if (m.b_unit > 0.0) {
     const NoiseModel r = resolve_flicker_range(m, rate_hz, duration_s);
     const double tau0 = 1.0 / rate_hz;
     if (r.flicker_tau_min_s < tau0 * (1.0 - 1e-12)) {
-      throw InputError("flicker-tau-min = " + num(r.flicker_tau_min_s) +
-                       " s is below the sample interval " + num(tau0) +
-                       " s: no Allan deviation exists there; use >= 1/rate");
+      throw InputError(fmt::format(
+          "flicker-tau-min = {:.10g} s is below the sample interval {:.10g} s: no Allan deviation exists there; "
+          "use >= 1/rate",
+          r.flicker_tau_min_s, tau0));
     }
     if (!(r.flicker_tau_max_s > r.flicker_tau_min_s)) {
-      throw InputError("flicker tau range [" + num(r.flicker_tau_min_s) + ", " +
-                       num(r.flicker_tau_max_s) + "] s is empty: flicker-tau-max must exceed flicker-tau-min");
+        throw InputError(empty_flicker_range(r.flicker_tau_min_s, r.flicker_tau_max_s));
     }
     design_flicker_bank(m.b_unit, r.flicker_tau_min_s, r.flicker_tau_max_s);  // throws if too wide
   }

@@ -6,11 +6,11 @@
 #include <numbers>
 
 #include <boost/math/quadrature/gauss.hpp>
+#include <fmt/core.h>
 
 #include "imunoise/error.hpp"
 #include "imunoise/sim/flicker.hpp"
 #include "imunoise/sim/gauss_markov.hpp"
-#include "message.hpp"
 
 namespace imunoise::sim {
 namespace {
@@ -29,7 +29,7 @@ FlickerBank bank_of(const NoiseModel& m) {
 
 void check_tau(double tau_s) {
   if (!std::isfinite(tau_s) || !(tau_s > 0.0)) {
-    throw InputError("tau = " + detail::num(tau_s) + " s must be positive and finite");
+    throw InputError(fmt::format("tau = {:.10g} s must be positive and finite", tau_s));
   }
 }
 

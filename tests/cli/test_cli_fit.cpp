@@ -99,7 +99,7 @@ TEST(CliFit, OptionalGaussMarkovAndSinusoidTerms) {
   EXPECT_TRUE(alone.out.empty());
 }
 
-// Issue 15: the fitted tau range, the excluded taus and the mismatch in the JSON, the built-in
+// The fitted tau range, the excluded taus and the mismatch in the JSON, the built-in
 // adis16405 spec, and a reversed range refused.
 TEST(CliFit, TauRangeMismatchAndAdisSpec) {
   TempDir dir;

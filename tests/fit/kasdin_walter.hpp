@@ -1,5 +1,5 @@
 #pragma once
-// An independent noise generator for the fit tests (issue 15): flicker rate noise made by the
+// An independent noise generator for the fit tests: flicker rate noise made by the
 // Kasdin-Walter fractional difference (1 - z^-1)^(-1/2) applied to white noise, i.e. a 1/f
 // spectrum from the record length all the way to the Nyquist frequency (unlike the
 // band-limited pole bank of src/sim), plus white and random-walk rate noise. Nothing here uses

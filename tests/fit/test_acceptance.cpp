@@ -1,4 +1,4 @@
-// Acceptance study of the issue (item 8): the simulated TG-100 gyro 1 of Table 2, 6 h at
+// Acceptance study of the fit's accuracy and coverage: the simulated TG-100 gyro 1 of Table 2, 6 h at
 // 200 Hz, fixed seeds 1..runs (default 50; IMUNOISE_FIT_RUNS overrides for the longer studies
 // recorded in docs/fit.md). Every run is fitted by the three methods from the same octave
 // curve; the table of mean error, RMSE and coverage is printed and asserted for wls.
@@ -99,7 +99,7 @@ TEST(FitAcceptance, Tg100Gyro1SixHours) {
       if (const char* v = std::getenv("IMUNOISE_FIT_SEL")) options.selection = static_cast<fit::Selection>(std::atoi(v));
       if (const char* v = std::getenv("IMUNOISE_FIT_NOR")) options.terms[fit::kR] = std::atoi(v) == 0;
       if (const char* v = std::getenv("IMUNOISE_FIT_CORR")) options.use_correlation = std::atoi(v) != 0;
-      // IMUNOISE_FIT_EXACT=1: the fit before issue 15 (no mismatch scatter, no short-tau cut).
+      // IMUNOISE_FIT_EXACT=1: the exact-model fit (no mismatch scatter, no short-tau cut).
       if (const char* v = std::getenv("IMUNOISE_FIT_EXACT"); v != nullptr && std::atoi(v) != 0) {
         options.model_mismatch = false;
         options.exclude_distorted = false;
@@ -143,7 +143,7 @@ TEST(FitAcceptance, Tg100Gyro1SixHours) {
     std::printf("wls: K^2 mean error %+.2f%% (standard error %.2f%%)\n", 100 * k2_err, 100 * k2_se);
   }
 
-  // Assertions on the default method (the issue's acceptance criteria; docs/fit.md has the
+  // Assertions on the default method (the accepted bias, RMSE and coverage; docs/fit.md has the
   // 200-run study).
   const auto n = summarize(stats[0], fit::kN, kN);
   const auto b = summarize(stats[0], fit::kB, kB);

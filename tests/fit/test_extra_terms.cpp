@@ -186,7 +186,7 @@ TEST(FitExtraTerms, ShortWhiteNoiseRecordsRarelyKeepAnOptionalTerm) {
   EXPECT_LE(kept_sin / static_cast<double>(records), bound);
 }
 
-// Issue 15: the default fit tries the optional terms by itself when chi^2 rejects the power-law
+// The default fit tries the optional terms by itself when chi^2 rejects the power-law
 // model and the curve has a bump (a real accelerometer: a 0.57 Hz line and a slow Gauss-Markov
 // excess). Simulated truth: TG-100 gyro 1's N and B plus a sinusoid (0.02 deg/s, 0.5 Hz) and a
 // Gauss-Markov term (2e-3 deg/s, 30 s), 30 min at 200 Hz. Both must be added, named in a warning,

@@ -52,7 +52,7 @@ TEST(Fit, ExactCurveIsRecoveredByEveryLeastSquaresMethod) {
   for (auto method : {fit::Method::wls, fit::Method::ols}) {
     fit::FitOptions o;
     o.method = method;
-    // The flicker band edge (issue 15) moves the flicker column at m <= 64 half-way to
+    // The flicker band edge (the default) moves the flicker column at m <= 64 half-way to
     // discrete 1/f noise: an exact eq. 5 curve is then recovered to its systematic only
     // (FitBandEdge below); here the plain eq. 5 basis.
     o.flicker_band_edge = false;
@@ -191,7 +191,7 @@ TEST(Fit, OptionsValidate) {
   EXPECT_EQ(fit::parse_method("slope"), fit::Method::slope);
 }
 
-// Issue 15: a sampling chain that filters the rate (a 4-sample moving average, as a decimating
+// A sampling chain that filters the rate (a 4-sample moving average, as a decimating
 // sensor's boxcar) bends the shortest taus below the white-noise line. The fit must find and
 // leave them out, and N must come back; with the check off the bent taus pull N away.
 TEST(FitSamplingChain, FilteredShortTausAreLeftOutAndNRecovered) {

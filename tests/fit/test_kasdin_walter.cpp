@@ -1,7 +1,7 @@
-// Coverage of the fit's intervals on records from an independent generator (issue 15): flicker
+// Coverage of the fit's intervals on records from an independent generator: flicker
 // rate noise by the Kasdin-Walter fractional difference (tests/fit/kasdin_walter.hpp, no
 // src/sim code) plus white and random-walk rate noise at the paper's gyro 1 (Table 2), 6 h at
-// 200 Hz. The CI test runs 30 records of 1 h (the 6 h study of the issue takes ~20 CPU-minutes
+// 200 Hz. The CI test runs 30 records of 1 h (the full 6 h study takes ~20 CPU-minutes
 // for the 2^24-point transforms: IMUNOISE_KW_HOURS=6, numbers in docs/fit.md);
 // IMUNOISE_KW_RUNS overrides the number of runs.
 #include <algorithm>

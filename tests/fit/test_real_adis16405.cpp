@@ -1,5 +1,5 @@
-// The default fit on real recordings (issue 15): ADIS16405 MEMS IMUs, 100 Hz, six axes, read
-// from ../shared/data relative to the repository root (IMUNOISE_SHARED_DATA overrides; the
+// The default fit (short-tau cut, model mismatch, automatic terms) on real recordings:
+// ADIS16405 MEMS IMUs, 100 Hz, six axes, read from ../shared/data relative to the repository root (IMUNOISE_SHARED_DATA overrides; the
 // data's licence keeps them out of the repository, so the tests skip with a message when the
 // folder is absent). Every file adis16405_unit*.csv found is checked with the same criteria:
 // nothing is tuned to one unit.
@@ -95,7 +95,8 @@ AxisCheck check_axis(const std::vector<double>& rate, const std::string& name) {
   auto curve = oadev(phase, tau0, factors);
   fill_confidence(curve, Estimator::oadev, phase, 0.95);
   fit::FitOptions options;
-  // IMUNOISE_FIT_EXACT=1 shows the fit before issue 15 (for docs/fit.md's before/after table;
+  // IMUNOISE_FIT_EXACT=1 shows the exact-model fit without the short-tau cut, mismatch scatter
+  // and band edge (docs/fit.md's before/after table;
   // the assertions then fail, as they did).
   if (const char* v = std::getenv("IMUNOISE_FIT_EXACT"); v != nullptr && std::atoi(v) != 0) {
     options.model_mismatch = false;

@@ -1,4 +1,4 @@
-// Fault detection (acceptance item 4 of issue 13): a step fault on one of six cone sensors is
+// Fault detection, end to end: a step fault on one of six cone sensors is
 // detected within seconds and isolated; the same records without it raise no alarm; the
 // empirical false-alarm rate over many clean simulated hours matches the configured one.
 #include <cmath>

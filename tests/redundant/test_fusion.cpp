@@ -1,4 +1,4 @@
-// Fusion of simulated recordings (acceptance item 4 of issue 13): four TG-100 gyros through the
+// Fusion of simulated recordings, end to end: four TG-100 gyros through the
 // tetrahedral axes under a constant body rate. The fused axes' mean is the body rate and their
 // fitted N, B, K are the predicted 0.866 N, 0.866 B, 0.866 K.
 #include <cmath>

@@ -114,7 +114,7 @@ TEST(Validation, FlickerAloneWithinBandsOfTheBank) {
   EXPECT_EQ(expect_within_bands(s), 18);
 }
 
-// The claim: the simulated flicker floor within 5 % of sqrt(2 ln 2 / pi) B over at
+// The simulator's claim (docs/simulator.md): the simulated flicker floor within 5 % of sqrt(2 ln 2 / pi) B over at
 // least three decades of tau. 2^24 samples at 200 Hz, m = 4 .. 4096 (tau = 0.02 .. 20.5 s,
 // 3.01 decades). The bank's own floor is within 0.1 % there (flicker.hpp); the estimator's
 // scatter at the largest m has EDF 5N/(4m) = 5120, i.e. a relative standard deviation of

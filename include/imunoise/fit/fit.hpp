@@ -35,7 +35,7 @@
 // coverage on simulated 6 h TG-100 records (tests/fit/test_acceptance.cpp; docs/fit.md:
 // N 94 %, B 92 %, K 98 % over 200 runs).
 //
-// Real sensors (issue 15, docs/fit.md): by default the shortest taus bent by the sensor's
+// Real sensors (docs/fit.md): by default the shortest taus bent by the sensor's
 // sampling chain and interior bumps (concave bends: no sum of power laws has one) are left out,
 // a model-mismatch scatter is estimated when chi^2 rejects the model (weights and intervals
 // include it), and the flicker column's shape at the shortest taus carries the band-edge
@@ -135,7 +135,7 @@ struct FitOptions {
   /// relative scatter s of the curve about the model is then estimated (Paule-Mandel: chi^2 =
   /// dof with the covariance Sigma + s^2 diag(model^2)) and used in the weights and in every
   /// interval, so that no tau is trusted beyond the model's own accuracy and the intervals are
-  /// widened by the mismatch. false: exact-model weights (the behaviour before issue 15).
+  /// widened by the mismatch. false: exact-model weights (the fitted curve's own sampling noise only).
   bool model_mismatch = true;
   /// wls, ols: the flicker floor at the shortest taus. eq. 5's (2 ln 2/pi) B^2 is the Allan
   /// variance of continuous 1/f rate noise integrated over each sample; discrete 1/f noise
