@@ -40,50 +40,24 @@ std::size_t cut(std::size_t n, int rank, int size) {
 Slice read_binary_slice(const load::RecordPlan& plan, const std::string& path, mpi::World world,
                         std::size_t& n_phase) {
   std::optional<std::string> error;
-  std::optional<io::BinaryReader> reader;
-  double offset = 0.0;
-  std::size_t n_records = 0;
+  load::BinaryLayout layout;
   try {
-    reader.emplace(path, plan.read);
-    n_records = *reader->record_count();
-    if (world.rank == 0 && plan.meta.kind == InputKind::rate) {
-      std::vector<double> first(std::min(load::kRateOffsetSamples, n_records));
-      reader->read(first);
-      for (auto& v : first) v *= plan.to_si;
-      offset = load::rate_offset(first);  // the serial loader's offset
-    }
+    layout = load::binary_layout(plan, path, world.rank == 0);
   } catch (const InputError& e) {
     error = e.what();
   }
   check_together(error, world.rank);
-  offset = mpi::broadcast(offset);
+  const double offset = mpi::broadcast(layout.rate_offset_si);
   const bool rate = plan.meta.kind == InputKind::rate;
-  n_phase = rate ? n_records + 1 : n_records;
+  n_phase = rate ? layout.records + 1 : layout.records;
   Slice slice;
   try {
     // Rate: records [a, b) integrate into phase [a, b]. Angle: phase [a, b] read directly.
-    const std::size_t span = rate ? n_records : n_records - 1;
+    const std::size_t span = rate ? layout.records : layout.records - 1;
     const std::size_t a = cut(span, world.rank, world.size);
     const std::size_t b = cut(span, world.rank + 1, world.size);
     slice.first_phase = a;
-    const std::size_t count = rate ? b - a : b - a + 1;
-    std::vector<double> values(count);
-    reader->seek(a);
-    if (reader->read(values) != count) throw InputError(path + ": short read at record " + std::to_string(a));
-    for (auto& v : values) v *= plan.to_si;
-    if (rate) {
-      slice.phase_si.reserve(count + 1);
-      PhaseIntegrator integrator(1.0 / plan.meta.rate_hz, offset);
-      integrator.push(values, slice.phase_si);
-    } else {
-      slice.phase_si = std::move(values);
-    }
-    for (std::size_t i = 0; i < slice.phase_si.size(); ++i) {
-      if (!std::isfinite(slice.phase_si[i])) {
-        throw InputError(plan.meta.source + ": the integral of the samples overflows near sample " +
-                         std::to_string(a + i) + "; check --units, --scale and --sensitivity");
-      }
-    }
+    slice.phase_si = load::read_phase_slice(plan, path, a, rate ? b - a : b - a + 1, offset);
   } catch (const InputError& e) {
     error = e.what();
   }

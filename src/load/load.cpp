@@ -593,4 +593,39 @@ FileChannels file_channels(const LoadOptions& options) {
   return out;
 }
 
+BinaryLayout binary_layout(const RecordPlan& plan, const std::string& path, bool with_offset) {
+  io::BinaryReader reader(path, plan.read);
+  BinaryLayout layout;
+  layout.records = *reader.record_count();
+  if (with_offset && plan.meta.kind == InputKind::rate) {
+    std::vector<double> first(std::min(kRateOffsetSamples, layout.records));
+    reader.read(first);
+    for (auto& v : first) v *= plan.to_si;
+    layout.rate_offset_si = rate_offset(first);
+  }
+  return layout;
+}
+
+std::vector<double> read_phase_slice(const RecordPlan& plan, const std::string& path, std::size_t first,
+                                     std::size_t count, double rate_offset_si) {
+  io::BinaryReader reader(path, plan.read);
+  std::vector<double> values(count);
+  reader.seek(first);
+  if (reader.read(values) != count) throw InputError(path + ": short read at record " + std::to_string(first));
+  for (auto& v : values) v *= plan.to_si;
+  std::vector<double> phase;
+  if (plan.meta.kind == InputKind::rate) {
+    phase.reserve(count + 1);
+    PhaseIntegrator integrator(1.0 / plan.meta.rate_hz, rate_offset_si);
+    integrator.push(values, phase);
+  } else {
+    phase = std::move(values);
+  }
+  if (const std::size_t i = first_non_finite(phase, 0); i < phase.size()) {
+    throw InputError(plan.meta.source + ": the integral of the samples overflows near sample " +
+                     std::to_string(first + i) + "; check --units, --scale and --sensitivity");
+  }
+  return phase;
+}
+
 }  // namespace imunoise::load

@@ -78,6 +78,22 @@ struct RecordPlan {
 };
 RecordPlan plan_record(const LoadOptions& options);
 
+/// Records in a planned raw binary file and, with `with_offset`, the rate offset its first
+/// samples give (the serial loader's offset; 0 for angle input): what a sliced read learns
+/// first (rank 0 the offset, every rank the count).
+struct BinaryLayout {
+  std::size_t records = 0;
+  double rate_offset_si = 0.0;
+};
+BinaryLayout binary_layout(const RecordPlan& plan, const std::string& path, bool with_offset);
+
+/// The phase (SI) of the records [first, first + count) of a planned raw binary file: rate
+/// records integrated from `rate_offset_si` (count + 1 phase samples, the first 0), angle
+/// records as they are. Slices integrated from one offset join exactly into the serial
+/// record. InputError naming the file on a short read or an overflowing integral.
+std::vector<double> read_phase_slice(const RecordPlan& plan, const std::string& path, std::size_t first,
+                                     std::size_t count, double rate_offset_si);
+
 /// The value channels a file holds, in order, for a study of all of them: a container's
 /// channel names, a raw binary file's channel indexes, a text file's header names (or column
 /// indexes without a header) but the time column. A text column named like a timestamp (t,
