@@ -52,13 +52,6 @@ struct SimulateOptionsCli {
   CLI::Option* range_option = nullptr;
 };
 
-template <class T>
-void append_little_endian(std::vector<unsigned char>& out, T value) {
-  auto bits = std::bit_cast<std::array<unsigned char, sizeof(T)>>(value);
-  if constexpr (std::endian::native == std::endian::big) std::reverse(bits.begin(), bits.end());
-  out.insert(out.end(), bits.begin(), bits.end());
-}
-
 sim::SimulationSpec build_spec(const SimulateOptionsCli& o, std::string& unit_name) {
   sim::SimulationSpec spec;
   spec.duration_s = o.duration_s;
@@ -137,34 +130,9 @@ void run_simulate(const SimulateOptionsCli& o) {
     sink.write(header.data(), header.size());
   }
 
-  constexpr std::size_t kFrames = 16384;
-  std::vector<double> chunk(kFrames * channels);
-  fmt::memory_buffer text_buffer;
-  std::vector<unsigned char> bytes;
-  while (const std::size_t frames = generator.generate_interleaved(chunk, threads)) {
-    const std::size_t values = frames * channels;
-    if (text) {
-      text_buffer.clear();
-      for (std::size_t k = 0; k < frames; ++k) {
-        for (std::size_t c = 0; c < channels; ++c) {
-          // Shortest representation that reads back to the same double.
-          fmt::format_to(std::back_inserter(text_buffer), "{}", chunk[k * channels + c]);
-          text_buffer.push_back(c + 1 < channels ? '\t' : '\n');
-        }
-      }
-      sink.write(text_buffer.data(), text_buffer.size());
-    } else {
-      bytes.clear();
-      for (std::size_t i = 0; i < values; ++i) {
-        if (o.format == "f64") {
-          append_little_endian(bytes, chunk[i]);
-        } else {
-          append_little_endian(bytes, static_cast<float>(chunk[i]));
-        }
-      }
-      sink.write(bytes.data(), bytes.size());
-    }
-  }
+  sim::write_samples(generator, text ? sim::SampleFormat::text
+                                      : o.format == "f64" ? sim::SampleFormat::f64 : sim::SampleFormat::f32,
+                     threads, [&sink](const void* data, std::size_t bytes) { sink.write(data, bytes); });
   sink.commit();
   if (!text && !(o.path.empty() || o.path == "-")) {
     // Raw files carry no header: say what was written.

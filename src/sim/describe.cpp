@@ -1,9 +1,14 @@
 #include "imunoise/sim/describe.hpp"
 
+#include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <iterator>
 #include <numbers>
+#include <vector>
 
-#include <fmt/core.h>
+#include <fmt/format.h>
 
 namespace imunoise::sim {
 namespace {
@@ -89,6 +94,50 @@ std::string simulation_header(const Generator& generator, const std::string& pre
     if (!cust.empty()) header += fmt::format("#   customary: {}\n", cust);
   }
   return header;
+}
+
+namespace {
+
+template <class T>
+void append_little_endian(std::vector<unsigned char>& out, T value) {
+  auto bits = std::bit_cast<std::array<unsigned char, sizeof(T)>>(value);
+  if constexpr (std::endian::native == std::endian::big) std::reverse(bits.begin(), bits.end());
+  out.insert(out.end(), bits.begin(), bits.end());
+}
+
+}  // namespace
+
+void write_samples(Generator& generator, SampleFormat format, unsigned threads,
+                   const std::function<void(const void* data, std::size_t bytes)>& write) {
+  constexpr std::size_t kFrames = 16384;
+  const std::size_t channels = generator.channel_count();
+  std::vector<double> chunk(kFrames * channels);
+  fmt::memory_buffer text_buffer;
+  std::vector<unsigned char> bytes;
+  while (const std::size_t frames = generator.generate_interleaved(chunk, threads)) {
+    const std::size_t values = frames * channels;
+    if (format == SampleFormat::text) {
+      text_buffer.clear();
+      for (std::size_t k = 0; k < frames; ++k) {
+        for (std::size_t c = 0; c < channels; ++c) {
+          // Shortest representation that reads back to the same double.
+          fmt::format_to(std::back_inserter(text_buffer), "{}", chunk[k * channels + c]);
+          text_buffer.push_back(c + 1 < channels ? '\t' : '\n');
+        }
+      }
+      write(text_buffer.data(), text_buffer.size());
+    } else {
+      bytes.clear();
+      for (std::size_t i = 0; i < values; ++i) {
+        if (format == SampleFormat::f64) {
+          append_little_endian(bytes, chunk[i]);
+        } else {
+          append_little_endian(bytes, static_cast<float>(chunk[i]));
+        }
+      }
+      write(bytes.data(), bytes.size());
+    }
+  }
 }
 
 }  // namespace imunoise::sim
