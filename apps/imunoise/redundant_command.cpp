@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -19,15 +18,12 @@
 
 #include "commands.hpp"
 #include "imunoise/error.hpp"
-#include "imunoise/io/binary_reader.hpp"
-#include "imunoise/io/text_reader.hpp"
-#include "imunoise/io/timestamps.hpp"
 #include "imunoise/redundant/analysis.hpp"
 #include "imunoise/redundant/fused_csv.hpp"
 #include "imunoise/redundant/fusion.hpp"
 #include "imunoise/redundant/geometry.hpp"
 #include "imunoise/redundant/report.hpp"
-#include "imunoise/study/sensor.hpp"
+#include "imunoise/study/unit_fusion.hpp"
 #include "imunoise/units.hpp"
 #include "imunoise/load/load.hpp"
 #include "input_options.hpp"
@@ -49,33 +45,6 @@ struct RedundantOptionsCli {
   std::string format = "json";
   unsigned threads = 0;
 };
-
-// The "# rate_hz R" and "# unit U ...; output unit V" lines of an imunoise simulate header.
-struct SimulateHeader {
-  double rate_hz = 0.0;
-  std::string output_unit;
-};
-
-SimulateHeader read_simulate_header(const std::string& path) {
-  SimulateHeader h;
-  std::ifstream in(path);
-  std::string line;
-  if (!std::getline(in, line) || line.rfind("# imunoise simulate", 0) != 0) return h;
-  for (int i = 0; i < 4 && std::getline(in, line); ++i) {
-    if (line.rfind("# rate_hz ", 0) == 0) {
-      try {
-        h.rate_hz = std::stod(line.substr(10));
-      } catch (const std::exception&) {
-      }
-    }
-    const auto pos = line.find("output unit ");
-    if (pos != std::string::npos) {
-      auto rest = line.substr(pos + 12);
-      h.output_unit = rest.substr(0, rest.find_first_of(";, "));
-    }
-  }
-  return h;
-}
 
 // One --fuse recording through the loader, its rate samples (SI) kept for the fusion. Without
 // --units the recordings are in the unit of the --from fits, when those state one.
@@ -142,24 +111,6 @@ void run_redundant(RedundantOptionsCli& o) {
       throw InputError(fmt::format("--fuse: {} recordings for the {} sensors of geometry {}; give "
                                    "one per sensing axis, in order", o.fuse.size(), n, geometry.name));
     }
-    // Recordings written by `imunoise simulate` state their unit: they must agree.
-    std::string first_unit, first_unit_file;
-    for (const auto& f : o.fuse) {
-      const auto h = read_simulate_header(f);
-      if (h.output_unit.empty()) continue;
-      if (first_unit.empty()) {
-        first_unit = h.output_unit;
-        first_unit_file = f;
-      } else if (h.output_unit != first_unit) {
-        throw InputError(fmt::format("{} is in {} but {} is in {}: the recordings must be in one "
-                                     "unit (convert them, or fuse them separately)", f, h.output_unit,
-                                     first_unit_file, first_unit));
-      }
-    }
-    if (!first_unit.empty() && !o.load.units.empty() && parse_unit(first_unit).name != unit.name) {
-      throw InputError(fmt::format("{} is in {} (its header says so) but --units is {}: pass "
-                                   "--units {}", first_unit_file, first_unit, o.load.units, first_unit));
-    }
     std::vector<Record> recs;
     for (const auto& f : o.fuse) recs.push_back(read_recording(o, f, models.empty() ? nullptr : &unit));
     if (o.load.units.empty() && models.empty()) {
@@ -172,36 +123,14 @@ void run_redundant(RedundantOptionsCli& o) {
       }
       unit = recs.front().rate_unit;
     }
-    for (std::size_t i = 1; i < n; ++i) {
-      if (std::abs(recs[i].rate_hz / recs[0].rate_hz - 1.0) > 1e-6) {
-        throw InputError(fmt::format("{} is sampled at {:.9g} Hz but {} at {:.9g} Hz: the recordings "
-                                     "must be synchronous (resample them first)", recs[i].source,
-                                     recs[i].rate_hz, recs[0].source, recs[0].rate_hz));
-      }
-    }
-    std::size_t len = recs[0].rate_si.size();
-    for (const auto& r : recs) len = std::min(len, r.rate_si.size());
-    for (auto& r : recs) {
-      if (r.rate_si.size() != len) {
-        fmt::print(stderr, "imunoise: note: {} has {} samples; the shortest recording has {}: its "
-                           "last {} samples are not used\n", r.source, r.rate_si.size(), len,
-                   r.rate_si.size() - len);
-        r.rate_si.resize(len);
-      }
-    }
-    if (models.empty() && o.detect) {
-      fmt::print(stderr, "imunoise: note: no --from fits: each recording's noise model is fitted "
-                         "from the recording itself (a fault inside it inflates its model)\n");
-      for (const auto& r : recs) models.push_back(study::sensor_model(r));
-    }
-    analysis = redundant::analyze_unit(geometry, models, ao);
     redundant::FusionOptions fo;
     fo.detect = o.detect;
     fo.detection = o.detection;
     fo.threads = o.threads ? o.threads : std::max(1u, std::thread::hardware_concurrency());
-    std::vector<std::span<const double>> spans;
-    for (const auto& r : recs) spans.emplace_back(r.rate_si);
-    fused = redundant::fuse_records(analysis, spans, recs[0].rate_hz, fo);
+    auto unit_fusion = study::fuse_recordings(geometry, std::move(recs), std::move(models), ao, fo);
+    for (const auto& note : unit_fusion.notes) fmt::print(stderr, "imunoise: note: {}\n", note);
+    analysis = std::move(unit_fusion.analysis);
+    fused = std::move(unit_fusion.fused);
     if (!o.output.empty()) redundant::write_fused_csv(o.output, o.force, *fused, unit, geometry.name, o.threads);
   } else {
     analysis = redundant::analyze_unit(geometry, models, ao);

@@ -337,20 +337,47 @@ bool is_container(const LoadOptions& options) {
 
 // The sample rate stated by the header of a text file written by `imunoise simulate`
 // ("# imunoise simulate ..." then "# rate_hz R ..."); 0 when the file is not one.
-double simulated_file_rate_hz(const std::string& path) {
+struct SimulateHeader {
+  double rate_hz = 0.0;      ///< 0 when the file is not one
+  std::string output_unit;   ///< "" when not stated
+};
+
+SimulateHeader simulated_file_header(const std::string& path) {
+  SimulateHeader h;
   std::ifstream in(path);
-  std::string first;
-  std::string second;
-  if (!std::getline(in, first) || first.rfind("# imunoise simulate", 0) != 0) return 0.0;
-  if (!std::getline(in, second) || second.rfind("# rate_hz ", 0) != 0) return 0.0;
-  try {
-    const double rate_hz = std::stod(second.substr(10));
-    return std::isfinite(rate_hz) && rate_hz > 0.0 ? rate_hz : 0.0;
-  } catch (const std::exception&) {
-    return 0.0;
+  std::string line;
+  if (!std::getline(in, line) || line.rfind("# imunoise simulate", 0) != 0) return h;
+  for (int i = 0; i < 4 && std::getline(in, line); ++i) {
+    if (line.rfind("# rate_hz ", 0) == 0) {
+      try {
+        const double rate_hz = std::stod(line.substr(10));
+        if (std::isfinite(rate_hz) && rate_hz > 0.0) h.rate_hz = rate_hz;
+      } catch (const std::exception&) {
+      }
+    }
+    const auto pos = line.find("output unit ");
+    if (pos != std::string::npos) {
+      const auto rest = line.substr(pos + 12);
+      h.output_unit = rest.substr(0, rest.find_first_of(";, "));
+    }
   }
+  return h;
 }
 
+// A simulated file states the unit of its values; --units must not say another.
+void check_stated_unit(const SimulateHeader& header, const LoadOptions& options, const std::string& source) {
+  if (header.output_unit.empty() || options.units.empty()) return;
+  try {
+    const Unit stated = parse_unit(header.output_unit);
+    if (stated.name != parse_unit(options.units).name) {
+      throw InputError(fmt::format("{} is in {} (its header says so) but --units is {}: pass --units {}",
+                                   source, header.output_unit, options.units, header.output_unit));
+    }
+  } catch (const InputError& e) {
+    if (std::string(e.what()).find("its header says so") != std::string::npos) throw;
+    // A unit the header states that is not a rate unit (volts): nothing to compare.
+  }
+}
 
 // The fields of a text file's first non-comment line (its header, or its first row).
 std::vector<std::string> first_line_fields(const std::string& file) {
@@ -497,8 +524,10 @@ Record load(const LoadOptions& options) {
   if (is_binary(options)) {
     load_binary(options, record, to_si);
   } else {
-    if (!(record.rate_hz > 0.0) && options.time_column.empty() && options.file != "-") {
-      record.rate_hz = simulated_file_rate_hz(options.file);
+    const SimulateHeader header = options.file == "-" ? SimulateHeader{} : simulated_file_header(options.file);
+    check_stated_unit(header, options, record.source);
+    if (!(record.rate_hz > 0.0) && options.time_column.empty()) {
+      record.rate_hz = header.rate_hz;
       if (record.rate_hz > 0.0) {
         record.notes.push_back(fmt::format("{}: rate {:g} Hz from the file's imunoise simulate header "
                                            "(--rate overrides)", record.source, record.rate_hz));
