@@ -22,6 +22,7 @@
 #include "imunoise/error.hpp"
 #include "imunoise/fit/report.hpp"
 #include "imunoise/fleet/fleet.hpp"
+#include "imunoise/fleet/outcome_wire.hpp"
 #include "imunoise/fleet/report.hpp"
 #include "imunoise/study/write.hpp"
 #include "imunoise/spec/spec.hpp"
@@ -91,30 +92,6 @@ fleet::SensorOutcome analyze_file(const FleetOptionsCli& options, const study::S
   return outcome;
 }
 
-std::vector<std::uint8_t> encode(std::size_t index, const fleet::SensorOutcome& outcome) {
-  const std::string text = outcome.fit.is_null() ? "E" + outcome.error : "J" + outcome.fit.dump();
-  std::vector<std::uint8_t> bytes(8 + text.size());
-  const auto i = static_cast<std::uint64_t>(index);
-  std::memcpy(bytes.data(), &i, 8);
-  std::memcpy(bytes.data() + 8, text.data(), text.size());
-  return bytes;
-}
-
-std::size_t decode(const std::vector<std::uint8_t>& bytes, const FleetOptionsCli& options,
-                   fleet::SensorOutcome& outcome) {
-  std::uint64_t index = 0;
-  std::memcpy(&index, bytes.data(), 8);
-  const std::string text(bytes.begin() + 8, bytes.end());
-  outcome.file = options.inputs.files.at(index);
-  if (text.front() == 'J') {
-    outcome.fit = nlohmann::json::parse(text.substr(1));
-  } else {
-    outcome.fit = nullptr;
-    outcome.error = text.substr(1);
-  }
-  return index;
-}
-
 void report_failure(const fleet::SensorOutcome& outcome, bool strict) {
   if (!strict) {
     fmt::print(stderr, "imunoise: warning: {} (the fleet run goes on; --strict stops at the first "
@@ -143,7 +120,7 @@ void worker(const FleetOptionsCli& options, const study::SensorOptions& analysis
     std::uint64_t index = 0;
     std::memcpy(&index, task.data(), 8);
     if (must_die(options.inputs.files.at(index))) std::raise(SIGKILL);
-    mpi::send_bytes(0, kResultTag, encode(index, analyze_file(options, analysis, index)));
+    mpi::send_bytes(0, kResultTag, fleet::encode_outcome(index, analyze_file(options, analysis, index)));
   }
 }
 
@@ -173,7 +150,7 @@ std::vector<fleet::SensorOutcome> dispatch(const FleetOptionsCli& options, int r
     const auto bytes = mpi::receive_bytes(-1 /* any */, kResultTag, &from);
     --busy;
     fleet::SensorOutcome outcome;
-    const std::size_t index = decode(bytes, options, outcome);
+    const std::size_t index = fleet::decode_outcome(bytes, options.inputs.files, outcome);
     results[index] = std::move(outcome);
     if (results[index].fit.is_null()) {
       report_failure(results[index], options.strict);
@@ -204,27 +181,10 @@ void run_fleet(const FleetOptionsCli& options) {
   // Rank 0 checks the outputs before any work; every rank learns the verdict together.
   std::string error;
   if (world.rank == 0) {
-    std::error_code ec;
-    if (std::filesystem::exists(dir, ec) && !std::filesystem::is_directory(dir, ec)) {
-      error = options.dir + ": exists and is not a directory; fix: give -o a directory";
-    } else {
-      for (const auto& path : {json_path, csv_path}) {
-        if (error.empty() && std::filesystem::exists(path, ec) && !options.force) {
-          error = path + ": file exists; imunoise does not overwrite it — choose another -o "
-                         "directory or pass --force";
-        }
-      }
-      if (error.empty()) {
-        try {
-          study::check_report_dir(options.dir, options.force);
-        } catch (const InputError& e) {
-          error = e.what();
-        }
-      }
-      if (error.empty()) {
-        std::filesystem::create_directories(dir, ec);
-        if (ec) error = options.dir + ": cannot create the directory (" + ec.message() + ")";
-      }
+    try {
+      fleet::prepare_output_dir(options.dir, options.force);
+    } catch (const InputError& e) {
+      error = e.what();
     }
   }
   if (!mpi::all_ok(error.empty())) {
@@ -258,18 +218,8 @@ void run_fleet(const FleetOptionsCli& options) {
   if (!options.quiet) {
     for (const auto& note : report.notes) fmt::print(stderr, "imunoise: note: {}\n", note);
   }
-  const auto& summary = doc["summary"];
-  std::string pass = "no datasheet (--spec)";
-  if (!summary["datasheet"].is_null()) {
-    pass = fmt::format("{} of {} pass {} ({:.0f} %)", summary["datasheet"]["n_pass"].get<std::size_t>(),
-                       summary["datasheet"]["n_judged"].get<std::size_t>(),
-                       summary["datasheet"]["spec"].get<std::string>(),
-                       100.0 * summary["datasheet"]["pass_rate"].get<double>());
-  }
-  fmt::print("fleet: {} files, {} analysed, {} failed; {}; {} outliers; wrote {}, {} and the report {}\n",
-             summary["n_files"].get<std::size_t>(), summary["n_analysed"].get<std::size_t>(),
-             summary["n_failed"].get<std::size_t>(), pass, summary["outliers"].size(), json_path,
-             csv_path, (dir / "report.html").string());
+  fmt::print("fleet: {}; wrote {}, {} and the report {}\n", fleet::summary_line(doc), json_path, csv_path,
+             (dir / "report.html").string());
 }
 
 }  // namespace

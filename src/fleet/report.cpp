@@ -1,4 +1,5 @@
 #include "imunoise/fleet/report.hpp"
+#include "imunoise/error.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -618,6 +619,24 @@ study::WrittenReport write_fleet_report(const json& fleet, const std::string& di
       std::move(texts),
       [&](const std::string& plotly) { return fleet_html(fleet, figures, title, plotly); }, figures,
       dir, options);
+}
+
+void prepare_output_dir(const std::string& dir, bool force) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  if (fs::exists(dir, ec) && !fs::is_directory(dir, ec)) {
+    throw InputError(dir + ": exists and is not a directory; fix: give -o a directory");
+  }
+  for (const auto& name : {"fleet.json", "fleet.csv"}) {
+    const std::string path = (fs::path(dir) / name).string();
+    if (fs::exists(path, ec) && !force) {
+      throw InputError(path + ": file exists; imunoise does not overwrite it — choose another -o "
+                              "directory or pass --force");
+    }
+  }
+  study::check_report_dir(dir, force);
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(dir + ": cannot create the directory (" + ec.message() + ")");
 }
 
 }  // namespace imunoise::fleet

@@ -46,4 +46,9 @@ study::WrittenReport write_fleet_report(const nlohmann::json& fleet, const std::
                                         const study::WriteOptions& options = {},
                                         const std::string& title = "imunoise fleet report");
 
+/// Checks before any work that the fleet's outputs (DIR/fleet.json, fleet.csv and the report)
+/// can be written, and creates DIR. InputError naming the path when DIR is a file, an output
+/// exists without `force`, or DIR cannot be created.
+void prepare_output_dir(const std::string& dir, bool force);
+
 }  // namespace imunoise::fleet
