@@ -45,81 +45,6 @@ struct AnalyzeOptionsCli {
   std::string title;
 };
 
-std::string stem_of(const std::string& file) {
-  if (file == "-") return "stdin";
-  return std::filesystem::path(file).stem().string();
-}
-
-struct ChannelInput {
-  load::LoadOptions input;
-  std::string name;
-};
-
-// The name of a channel in the report: its column or channel name, prefixed with the file's
-// stem when several files are studied; the stem alone for a file of one unnamed channel.
-std::string channel_name(const std::string& file, const std::string& column, std::size_t n_files,
-                         std::size_t n_columns, bool named, bool binary) {
-  if (n_columns == 1 && column.empty()) return stem_of(file);
-  const bool several = n_columns > 1;
-  const std::string label = named ? column : (binary ? "ch" + column : "col" + column);
-  if (n_files == 1) return several || named ? label : stem_of(file);
-  return several ? stem_of(file) + ":" + label : stem_of(file);
-}
-
-// Every (file, channel) pair to load, with its name.
-std::vector<ChannelInput> plan_channels(const AnalyzeOptionsCli& o,
-                                        std::vector<study::FailedInput>& failed) {
-  std::vector<ChannelInput> plan;
-  const auto wanted = split_comma_list(o.inputs.columns);
-  for (const auto& file : o.inputs.files) {
-    load::LoadOptions base = o.inputs.load;
-    base.file = file;
-    std::vector<std::string> columns = wanted;
-    bool named = !wanted.empty();
-    bool binary = false;
-    if (columns.empty()) {
-      try {
-        auto found = load::file_channels(base);
-        columns = std::move(found.names);
-        named = found.named;
-        binary = found.binary;
-        if (!found.time_column.empty()) base.time_column = found.time_column;
-        if (!found.note.empty()) fmt::print(stderr, "imunoise: note: {}\n", found.note);
-      } catch (const InputError& e) {
-        if (!o.keep_going) throw;
-        failed.push_back({file, e.what()});
-        continue;
-      }
-    } else {
-      binary = !base.binary.empty() ||
-               (file != "-" && io::binary_format_from_extension(file).has_value());
-    }
-    for (const auto& column : columns) {
-      ChannelInput ch{base, channel_name(file, column, o.inputs.files.size(), columns.size(), named, binary)};
-      ch.input.column = column;
-      plan.push_back(std::move(ch));
-    }
-  }
-  const auto names = split_comma_list(o.names);
-  if (!names.empty()) {
-    if (names.size() != plan.size()) {
-      throw InputError(fmt::format("--names gives {} names for {} channels; fix: one name per "
-                                   "channel, in file and column order", names.size(), plan.size()));
-    }
-    for (std::size_t i = 0; i < plan.size(); ++i) plan[i].name = names[i];
-  }
-  const auto units = split_comma_list(o.inputs.load.units);
-  if (units.size() > 1 && units.size() != plan.size()) {
-    throw InputError(fmt::format("--units gives {} units for {} channels; fix: one unit for all, "
-                                 "or one per channel in file and column order",
-                                 units.size(), plan.size()));
-  }
-  for (std::size_t i = 0; i < plan.size(); ++i) {
-    plan[i].input.units = units.empty() ? std::string() : units.size() == 1 ? units[0] : units[i];
-  }
-  return plan;
-}
-
 void run_analyze(const AnalyzeOptionsCli& o) {
   if (o.dir.empty()) throw InputError("analyze needs -o DIR: the directory the report goes to");
   study::check_report_dir(o.dir, o.force);  // before the study's work, not after
@@ -137,12 +62,16 @@ void run_analyze(const AnalyzeOptionsCli& o) {
   Progress progress(o.quiet);
 
   std::vector<study::FailedInput> failed;
-  const auto plan = plan_channels(o, failed);
+  const auto plan = load::plan_channels(o.inputs.files, o.inputs.columns, o.names, o.inputs.load, o.keep_going,
+                                       [&](const std::string& file, const std::string& error) {
+                                         failed.push_back({file, error});
+                                       });
   std::vector<study::Record> records;
   for (std::size_t i = 0; i < plan.size(); ++i) {
     progress.update("reading " + plan[i].name, 0.0);
     try {
-      Record record = load::load(plan[i].input);
+      if (!plan[i].note.empty()) fmt::print(stderr, "imunoise: note: {}\n", plan[i].note);
+      Record record = load::load(plan[i].options);
       print_load_notes(record);
       record.name = plan[i].name;
       records.push_back(std::move(record));
@@ -154,7 +83,7 @@ void run_analyze(const AnalyzeOptionsCli& o) {
         }
         throw;
       }
-      failed.push_back({plan[i].input.file, e.what()});
+      failed.push_back({plan[i].options.file, e.what()});
       fmt::print(stderr, "imunoise: warning: skipped: {}\n", e.what());
     }
   }

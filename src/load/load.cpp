@@ -13,6 +13,7 @@
 
 #include <fmt/core.h>
 
+#include "imunoise/comma_list.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/finite.hpp"
 #include "imunoise/io/binary_reader.hpp"
@@ -572,6 +573,82 @@ RecordPlan plan_record(const LoadOptions& options) {
     }
     require_rate(record.rate_hz, record.source);
     plan.read = binary_options(options);
+  }
+  return plan;
+}
+
+namespace {
+
+std::string stem_of(const std::string& file) {
+  if (file == "-") return "stdin";
+  return std::filesystem::path(file).stem().string();
+}
+
+// The name of a channel in the report: its column or channel name, prefixed with the file's
+// stem when several files are studied; the stem alone for a file of one unnamed channel.
+std::string channel_name(const std::string& file, const std::string& column, std::size_t n_files,
+                         std::size_t n_columns, bool named, bool binary) {
+  if (n_columns == 1 && column.empty()) return stem_of(file);
+  const bool several = n_columns > 1;
+  const std::string label = named ? column : (binary ? "ch" + column : "col" + column);
+  if (n_files == 1) return several || named ? label : stem_of(file);
+  return several ? stem_of(file) + ":" + label : stem_of(file);
+}
+
+}  // namespace
+
+std::vector<ChannelPlan> plan_channels(std::span<const std::string> files, const std::string& columns_list,
+                                       const std::string& names_list, const LoadOptions& shared, bool keep_going,
+                                       const std::function<void(const std::string&, const std::string&)>& failed) {
+  std::vector<ChannelPlan> plan;
+  const auto wanted = split_comma_list(columns_list);
+  for (const auto& file : files) {
+    LoadOptions base = shared;
+    base.file = file;
+    std::vector<std::string> columns = wanted;
+    std::string base_note;
+    bool named = !wanted.empty();
+    bool binary = false;
+    if (columns.empty()) {
+      try {
+        auto found = file_channels(base);
+        columns = std::move(found.names);
+        named = found.named;
+        binary = found.binary;
+        if (!found.time_column.empty()) base.time_column = found.time_column;
+        if (!found.note.empty()) base_note = found.note;
+      } catch (const InputError& e) {
+        if (!keep_going) throw;
+        failed(file, e.what());
+        continue;
+      }
+    } else {
+      binary = !base.binary.empty() ||
+               (file != "-" && io::binary_format_from_extension(file).has_value());
+    }
+    for (const auto& column : columns) {
+      ChannelPlan ch{base, channel_name(file, column, files.size(), columns.size(), named, binary), base_note};
+      ch.options.column = column;
+      base_note.clear();
+      plan.push_back(std::move(ch));
+    }
+  }
+  const auto names = split_comma_list(names_list);
+  if (!names.empty()) {
+    if (names.size() != plan.size()) {
+      throw InputError(fmt::format("--names gives {} names for {} channels; fix: one name per "
+                                   "channel, in file and column order", names.size(), plan.size()));
+    }
+    for (std::size_t i = 0; i < plan.size(); ++i) plan[i].name = names[i];
+  }
+  const auto units = split_comma_list(shared.units);
+  if (units.size() > 1 && units.size() != plan.size()) {
+    throw InputError(fmt::format("--units gives {} units for {} channels; fix: one unit for all, "
+                                 "or one per channel in file and column order",
+                                 units.size(), plan.size()));
+  }
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    plan[i].options.units = units.empty() ? std::string() : units.size() == 1 ? units[0] : units[i];
   }
   return plan;
 }

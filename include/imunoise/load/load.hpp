@@ -4,6 +4,7 @@
 // the preprocessing steps; the rate offset and the integration to phase (load/integrate.hpp).
 // Every command and every Python entry point loads through here.
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <span>
 #include <string>
@@ -107,5 +108,24 @@ struct FileChannels {
   std::string note;              ///< what was decided about it
 };
 FileChannels file_channels(const LoadOptions& options);
+
+/// One channel of a study of many files: how to load it, its name in the report (its column
+/// or channel name, prefixed with the file's stem when several files are studied; the stem for
+/// a file of one unnamed channel), and what was decided about its file (a column read as time).
+struct ChannelPlan {
+  LoadOptions options;
+  std::string name;
+  std::string note;
+};
+
+/// Every (file, channel) pair of a study: the `columns_list` (comma list; empty: every value
+/// channel of each file, file_channels), names from `names_list` (comma list, one per channel)
+/// or derived, the unit from `shared.units` (one for all, or a comma list, one per channel).
+/// A file whose channels cannot be listed is an InputError, or with `keep_going` reported to
+/// `failed(file, error)` and skipped. InputError when the names or units do not count the
+/// channels.
+std::vector<ChannelPlan> plan_channels(std::span<const std::string> files, const std::string& columns_list,
+                                       const std::string& names_list, const LoadOptions& shared, bool keep_going,
+                                       const std::function<void(const std::string& file, const std::string& error)>& failed);
 
 }  // namespace imunoise::load
