@@ -7,8 +7,15 @@
 
 #include "commands.hpp"
 #include "imunoise/error.hpp"
+#include "mpi_session.hpp"
 
 int main(int argc, char** argv) {
+  try {
+    imunoise::cli::mpi::hand_over_to_mpi_build(argv);
+  } catch (const imunoise::InputError& e) {
+    fmt::print(stderr, "imunoise: error: {}\n", e.what());
+    return 1;
+  }
   CLI::App app{"imunoise: noise analysis of inertial sensors (Allan family, noise model, navigation error)"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "imunoise 0.1.0");
