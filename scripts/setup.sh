@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # Installs every Debian package imunoise needs on a fresh Debian 12 machine, then builds.
-# Usage: scripts/setup.sh [preset]   (default preset: default)
+# Usage: scripts/setup.sh [preset [target...]]   (default preset: default; no target: all)
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 preset="${1:-default}"
+shift $(( $# > 0 ? 1 : 0 ))
+targets=("$@")
 
 packages=(
   build-essential cmake ninja-build pkg-config
@@ -37,7 +39,13 @@ cd "$here"
 if [ ! -f web/node_modules/plotly.js-basic-dist-min/plotly-basic.min.js ]; then
   (cd web && npm ci --no-audit --no-fund --loglevel=error)
 fi
-# The MCAP reader's tests write files with the reference TypeScript writer (node 20 + npm).
-if command -v npm >/dev/null; then (cd tests/io/mcap_writer && npm ci --no-audit --no-fund --loglevel=error); fi
+# The MCAP reader's tests write files with the reference TypeScript writer (node 20 + npm): only
+# for a whole build, which includes the tests.
+if ((${#targets[@]} == 0)) && command -v npm >/dev/null; then
+  (cd tests/io/mcap_writer && npm ci --no-audit --no-fund --loglevel=error)
+fi
 cmake --preset "$preset" >/dev/null
-cmake --build --preset "$preset" -j "$(nproc)"
+# Named targets only (the demo needs the CLI, not the ~150 test and benchmark programs).
+target_flags=()
+((${#targets[@]})) && target_flags=(--target "${targets[@]}")
+cmake --build --preset "$preset" -j "$(nproc)" "${target_flags[@]}"

@@ -1,8 +1,13 @@
 #include "mpi_session.hpp"
 
+#include <cerrno>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <filesystem>
 #include <limits>
+
+#include <unistd.h>
 
 #include <fmt/core.h>
 
@@ -39,6 +44,8 @@ constexpr std::size_t kPiece = std::size_t{1} << 30;
 }  // namespace
 
 bool available() { return true; }
+
+void hand_over_to_mpi_build(char**) {}
 
 World start() {
   if (g_started) return g_world;
@@ -106,12 +113,36 @@ World g_world;
 
 bool available() { return false; }
 
+namespace {
+
+[[noreturn]] void refuse_without_mpi() {
+  throw InputError("this imunoise was built without MPI (IMUNOISE_MPI=OFF or no Open MPI at "
+                   "build time), so under mpirun every rank would do the whole job; fix: "
+                   "rebuild with libopenmpi-dev installed, or run without mpirun");
+}
+
+}  // namespace
+
+void hand_over_to_mpi_build(char** argv) {
+  if (!launched_by_mpirun()) return;
+#ifdef IMUNOISE_MPI_EXECUTABLE
+  // /proc/self/exe, not argv[0]: mpirun may have found us through PATH.
+  std::error_code ec;
+  const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", ec);
+  const std::filesystem::path sibling = self.parent_path() / IMUNOISE_MPI_EXECUTABLE;
+  if (!ec) ::execv(sibling.c_str(), argv);
+  const std::string why = ec ? "cannot read /proc/self/exe: " + ec.message() : std::strerror(errno);
+  throw InputError("started by mpirun, but the MPI build " + sibling.string() + " cannot be run (" +
+                   why + "); fix: install imunoise-mpi next to imunoise (it is built with "
+                   "IMUNOISE_MPI=ON, target imunoise_cli_mpi), or run without mpirun");
+#else
+  (void)argv;
+  refuse_without_mpi();
+#endif
+}
+
 World start() {
-  if (launched_by_mpirun()) {
-    throw InputError("this imunoise was built without MPI (IMUNOISE_MPI=OFF or no Open MPI at "
-                     "build time), so under mpirun every rank would do the whole job; fix: "
-                     "rebuild with libopenmpi-dev installed, or run without mpirun");
-  }
+  if (launched_by_mpirun()) refuse_without_mpi();
   return g_world;
 }
 

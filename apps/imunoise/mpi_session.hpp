@@ -15,6 +15,13 @@ bool launched_by_mpirun();
 /// True when the executable was built with MPI (IMUNOISE_MPI).
 bool available();
 
+/// In the executable without MPI: when started by mpirun, replaces this process (execv, same
+/// arguments and environment, same pid for mpirun) by the MPI build next to it, so that
+/// `mpirun imunoise ...` works while a plain run never loads Open MPI. Returns when there is
+/// nothing to hand over (not under mpirun, or this is the MPI build); InputError when under
+/// mpirun and the MPI build is absent or cannot be run.
+void hand_over_to_mpi_build(char** argv);
+
 /// Initialises MPI when launched by mpirun (once; finalised at exit) and returns this
 /// process's rank and the number of ranks; {0, 1} for a plain run. InputError when launched by
 /// mpirun but built without MPI (every rank would otherwise do the whole job).
