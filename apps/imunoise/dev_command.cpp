@@ -62,31 +62,19 @@ void run_dev_mpi(const DevOptionsCli& options, const std::vector<Estimator>& est
   if (options.bias_correct) throw InputError("--bias-correct does not apply to --mpi's estimators");
   const DistributedCurves dist = distributed_deviations(options.input, estimators, grid);
   if (!dist.root) return;
-  const Record& record = dist.record;
-  ConfidenceOptions confidence;
-  confidence.level = options.ci_level;
-  confidence.forced_alpha = forced_alpha;
-  confidence.threads = options.threads;
-  confidence.n_phase_total = dist.n_phase;
   const std::string note =
       options.no_ci ? "--mpi: sums merged over the ranks; no confidence intervals (--no-ci)"
                     : "--mpi: sums merged over the ranks; noise type identified on rank 0's slice (" +
                           std::to_string(dist.root_phase_si.size()) + " of " +
                           std::to_string(dist.n_phase) + " phase points), EDF over the whole record";
-  std::vector<study::Curve> curves;
-  for (std::size_t i = 0; i < estimators.size(); ++i) {
-    const Estimator estimator = estimators[i];
-    const bool integrated = reports_angle(estimator);
-    const double to_si =
-        integrated ? integral_unit(dist.record.rate_unit).to_si : dist.record.rate_unit.to_si;
-    auto points = dist.curves[i];
-    for (auto& p : points) p.dev /= to_si;
-    std::vector<PointConfidence> info;
-    if (!options.no_ci) info = fill_confidence(points, estimator, dist.root_phase_si, confidence);
-    curves.push_back({estimator, std::string(estimator_name(estimator)), std::move(points),
-                      unit_label(dist.record, integrated), std::move(info), {}, note, std::nullopt});
-  }
-  write_output(options.output, render(options, record, curves));
+  study::CurveOptions co;
+  co.estimators = estimators;
+  co.ci_level = options.ci_level;
+  co.no_ci = options.no_ci;
+  co.forced_alpha = forced_alpha;
+  co.threads = options.threads;
+  const auto curves = study::curves_from_points(dist.record, co, dist.curves, dist.root_phase_si, dist.n_phase, note);
+  write_output(options.output, render(options, dist.record, curves));
 }
 
 void run_dev(const DevOptionsCli& options) {

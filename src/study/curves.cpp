@@ -34,6 +34,30 @@ std::string csv_number(double v, int digits) {
 
 }  // namespace
 
+std::vector<Curve> curves_from_points(const Record& record, const CurveOptions& options,
+                                      const std::vector<std::vector<DevPoint>>& points_si,
+                                      std::span<const double> identification_phase_si, std::size_t n_phase_total,
+                                      const std::string& note) {
+  ConfidenceOptions confidence;
+  confidence.level = options.ci_level;
+  confidence.forced_alpha = options.forced_alpha;
+  confidence.threads = options.threads;
+  confidence.n_phase_total = n_phase_total;
+  std::vector<Curve> curves;
+  for (std::size_t i = 0; i < options.estimators.size(); ++i) {
+    const Estimator estimator = options.estimators[i];
+    const bool integrated = reports_angle(estimator);
+    const double to_si = integrated ? integral_unit(record.rate_unit).to_si : record.rate_unit.to_si;
+    auto points = points_si[i];
+    for (auto& p : points) p.dev /= to_si;
+    std::vector<PointConfidence> info;
+    if (!options.no_ci) info = fill_confidence(points, estimator, identification_phase_si, confidence);
+    curves.push_back({estimator, std::string(estimator_name(estimator)), std::move(points),
+                      unit_label(record, integrated), std::move(info), {}, note, std::nullopt});
+  }
+  return curves;
+}
+
 std::vector<Curve> compute_curves(const Record& record, const CurveOptions& options,
                                   const std::function<void(const std::string&)>& warn) {
   const double tau0_s = 1.0 / record.rate_hz;

@@ -45,6 +45,15 @@ struct Curve {
   std::optional<TheoBiasFactor> theobr_factor;
 };
 
+/// Curves of deviations already computed in SI (merged from the slices of `--mpi`): each put in
+/// the record's unit, with confidence unless options.no_ci, the noise type identified on
+/// `identification_phase_si` (a part of the record) and the EDF counting all `n_phase_total`
+/// phase samples. `points[i]` belongs to options.estimators[i]; `note` goes on every curve.
+std::vector<Curve> curves_from_points(const Record& record, const CurveOptions& options,
+                                      const std::vector<std::vector<DevPoint>>& points_si,
+                                      std::span<const double> identification_phase_si, std::size_t n_phase_total,
+                                      const std::string& note);
+
 /// Computes every requested curve. Throws InputError when the record is too short for an
 /// estimator or an option is invalid. `warn` receives each budget note as it is decided (the
 /// CLI prints them on stderr); it may be empty.
