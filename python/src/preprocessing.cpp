@@ -5,7 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
+
+#include <fmt/core.h>
 
 #include "imunoise/error.hpp"
 #include "imunoise/finite.hpp"
@@ -36,11 +37,8 @@ std::vector<double> vector_of(const py::object& value, const char* what, std::si
 std::string skip_text(const py::object& skip) {
   if (skip.is_none()) return "";
   if (py::isinstance<py::str>(skip)) return skip.cast<std::string>();
-  const double seconds = skip.cast<double>();
-  std::ostringstream text;
-  text.precision(17);
-  text << seconds;
-  return text.str();
+  // 17 significant digits: the duration parser reads back the very double given.
+  return fmt::format("{:.17g}", skip.cast<double>());
 }
 
 }  // namespace

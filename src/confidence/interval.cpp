@@ -3,7 +3,8 @@
 #include <boost/math/distributions/chi_squared.hpp>
 #include <cmath>
 #include <limits>
-#include <sstream>
+
+#include <fmt/core.h>
 
 #include "imunoise/error.hpp"
 
@@ -22,18 +23,14 @@ using NoThrowPolicy = boost::math::policies::policy<
 
 void validate_confidence_level(double level, const std::string& what) {
   if (std::isfinite(level) && level > 0.0 && level < 1.0) return;
-  std::ostringstream message;
-  message.precision(10);
-  message << what << " " << level
-          << " is impossible: give a probability strictly between 0 and 1, such as 0.683 (one "
-             "sigma, the default) or 0.95";
+  std::string message = fmt::format(
+      "{} {:.10g} is impossible: give a probability strictly between 0 and 1, such as 0.683 (one "
+      "sigma, the default) or 0.95",
+      what, level);
   if (std::isfinite(level) && level > 1.0 && level < 100.0) {
-    std::ostringstream percent;
-    percent.precision(10);
-    percent << " (for " << level << "% write " << level / 100.0 << ")";
-    message << percent.str();
+    message += fmt::format(" (for {:.10g}% write {:.10g})", level, level / 100.0);
   }
-  throw InputError(message.str());
+  throw InputError(message);
 }
 
 double chi2_quantile(double p, double edf) {

@@ -1,12 +1,12 @@
 #include "imunoise/fleet/fleet.hpp"
 
 #include <cmath>
-#include <cstdarg>
-#include <cstdio>
 #include <algorithm>
 #include <map>
 #include <set>
 #include <vector>
+
+#include <fmt/core.h>
 
 #include "imunoise/error.hpp"
 #include "imunoise/fleet/statistics.hpp"
@@ -24,17 +24,7 @@ bool identified_value(const nlohmann::json& term, double& value) {
   return std::isfinite(value) && value > 0.0;
 }
 
-// printf into a string (the library does not depend on fmt).
-__attribute__((format(printf, 1, 2))) std::string format(const char* pattern, ...) {
-  va_list args;
-  va_start(args, pattern);
-  char buffer[1024];
-  const int n = std::vsnprintf(buffer, sizeof buffer, pattern, args);
-  va_end(args);
-  return std::string(buffer, static_cast<std::size_t>(std::max(0, std::min<int>(n, sizeof buffer - 1))));
-}
-
-std::string number(double v) { return format("%.6g", v); }
+std::string number(double v) { return fmt::format("{:.6g}", v); }
 
 nlohmann::json quantiles_json(const Quantiles& q) {
   return {{"n", q.n}, {"p05", q.p05}, {"q25", q.q25}, {"median", q.median}, {"q75", q.q75},
@@ -57,7 +47,7 @@ std::string csv_field(const std::string& text) {
 }
 
 std::string csv_number(const nlohmann::json& v) {
-  return v.is_number() ? format("%.9g", v.get<double>()) : std::string();
+  return v.is_number() ? fmt::format("{:.9g}", v.get<double>()) : std::string();
 }
 
 }  // namespace
@@ -129,11 +119,10 @@ nlohmann::json fleet_document(std::span<const SensorOutcome> sensors, const Flee
         const double hi = term["ci_high"].is_number() ? term["ci_high"].get<double>() : values[k];
         if (std::abs(z[k]) > rules.outlier_z && !(lo <= median && median <= hi)) {
           add_flag(doc["sensors"][owner[k]], "outlier",
-                   format("%s = %s %s is an outlier: robust z = %+.2f on log10 (|z| > %g), and "
-                          "its interval [%s, %s] excludes the fleet median %s %s",
-                          name, number(values[k]).c_str(), unit.c_str(), z[k], rules.outlier_z,
-                          number(lo).c_str(), number(hi).c_str(), number(median).c_str(),
-                          unit.c_str()));
+                   fmt::format("{} = {} {} is an outlier: robust z = {:+.2f} on log10 (|z| > {:g}), "
+                               "and its interval [{}, {}] excludes the fleet median {} {}",
+                               name, number(values[k]), unit, z[k], rules.outlier_z, number(lo),
+                               number(hi), number(median), unit));
         }
       }
     }
@@ -160,15 +149,14 @@ nlohmann::json fleet_document(std::span<const SensorOutcome> sensors, const Flee
       auto& entry = doc["sensors"][i];
       if (verdict == "fail") {
         add_flag(entry, "datasheet_fail",
-                 format("%s fails the datasheet: %s %s, %+.1f %% against the spec %s %s (%s)",
-                        symbol.c_str(),
-                        number(t["measured_in_spec_unit"]["value"].get<double>()).c_str(),
-                        t["measured_in_spec_unit"]["unit"].get<std::string>().c_str(),
-                        t["deviation_percent"].get<double>(),
-                        number(t["spec"]["value"].get<double>()).c_str(),
-                        t["spec"]["unit"].get<std::string>().c_str(),
-                        t.value("conclusive", false) ? "conclusive over the confidence interval"
-                                                     : "inconclusive: the interval straddles the limit"));
+                 fmt::format("{} fails the datasheet: {} {}, {:+.1f} % against the spec {} {} ({})",
+                             symbol, number(t["measured_in_spec_unit"]["value"].get<double>()),
+                             t["measured_in_spec_unit"]["unit"].get<std::string>(),
+                             t["deviation_percent"].get<double>(),
+                             number(t["spec"]["value"].get<double>()),
+                             t["spec"]["unit"].get<std::string>(),
+                             t.value("conclusive", false) ? "conclusive over the confidence interval"
+                                                          : "inconclusive: the interval straddles the limit"));
       } else if (verdict == "not_identified") {
         add_flag(entry, "datasheet_not_identified",
                  symbol + " is in the datasheet but could not be identified from the record");

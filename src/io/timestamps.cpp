@@ -3,9 +3,10 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <string>
+
+#include <fmt/core.h>
 
 #include "imunoise/error.hpp"
 #include "imunoise/io/text_reader.hpp"
@@ -22,11 +23,7 @@ constexpr std::int64_t nanosecond_threshold = 1'000'000'000'000'000;
 
 bool is_digit(char c) { return c >= '0' && c <= '9'; }
 
-std::string number_text(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.10g", value);
-  return buffer;
-}
+std::string number_text(double value) { return fmt::format("{:.10g}", value); }
 
 // "file:123: sample 120" when the line is known, else "file: sample 120".
 std::string where(std::string_view source, std::optional<std::size_t> line, std::size_t index) {

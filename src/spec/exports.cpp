@@ -2,9 +2,10 @@
 
 #include <charconv>
 #include <cmath>
-#include <cstdio>
 #include <nlohmann/json.hpp>
 #include <numbers>
+
+#include <fmt/core.h>
 
 #include "imunoise/error.hpp"
 
@@ -58,11 +59,7 @@ constexpr KalibrUnits kAccelUnits{"accelerometer",  "m/s^2/sqrt(Hz)",
                                   "m/s^2/sqrt(h)",  1.0 / units::sqrt_h_to_sqrt_s};
 
 // Six significant digits, for comments meant for people (the exact values are in the keys).
-std::string readable(double value) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.6g", value);
-  return buffer;
-}
+std::string readable(double value) { return fmt::format("{:.6g}", value); }
 
 std::string ci_text(const Coefficient& c, double to_unit, double level) {
   if (!std::isfinite(c.ci_low) || !std::isfinite(c.ci_high)) return "";

@@ -2,8 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <string>
+
+#include <fmt/core.h>
 
 namespace imunoise::study {
 namespace {
@@ -39,11 +40,7 @@ const nlohmann::json* find_curve(const nlohmann::json& channel, const std::strin
   return nullptr;
 }
 
-std::string fmt_g(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", v);
-  return text;
-}
+std::string fmt_g(double v) { return fmt::format("{:.4g}", v); }
 
 std::string ci_text(const nlohmann::json& doc) {
   return std::to_string(static_cast<int>(100.0 * doc["options"]["curve_ci_level"].get<double>() + 0.5)) +
