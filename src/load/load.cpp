@@ -216,6 +216,7 @@ void load_binary(const LoadOptions& options, Record& record, double to_si) {
       for (std::size_t i = 0; i < got; ++i) record.phase_si.push_back(chunk[i] * to_si);
     }
     record.n_samples = record.phase_si.size();
+    require_finite_phase(record);
     return;
   }
   if (const auto count = reader->record_count()) reserve_phase(record.phase_si, *count + 1);
@@ -229,6 +230,7 @@ void load_binary(const LoadOptions& options, Record& record, double to_si) {
     n += got;
   }
   record.n_samples = n;
+  require_finite_phase(record);  // the streamed phase bypasses finish_rates
 }
 
 void load_text(const LoadOptions& options, Record& record, double to_si) {
@@ -368,15 +370,15 @@ SimulateHeader simulated_file_header(const std::string& path) {
 // A simulated file states the unit of its values; --units must not say another.
 void check_stated_unit(const SimulateHeader& header, const LoadOptions& options, const std::string& source) {
   if (header.output_unit.empty() || options.units.empty()) return;
+  Unit stated;
   try {
-    const Unit stated = parse_unit(header.output_unit);
-    if (stated.name != parse_unit(options.units).name) {
-      throw InputError(fmt::format("{} is in {} (its header says so) but --units is {}: pass --units {}",
-                                   source, header.output_unit, options.units, header.output_unit));
-    }
-  } catch (const InputError& e) {
-    if (std::string(e.what()).find("its header says so") != std::string::npos) throw;
-    // A unit the header states that is not a rate unit (volts): nothing to compare.
+    stated = parse_unit(header.output_unit);
+  } catch (const InputError&) {
+    return;  // a unit that is not a rate unit (volts): nothing to compare
+  }
+  if (stated.name != parse_unit(options.units).name) {
+    throw InputError(fmt::format("{} is in {} (its header says so) but --units is {}: pass --units {}",
+                                 source, header.output_unit, options.units, header.output_unit));
   }
 }
 
@@ -534,22 +536,18 @@ Record load(const LoadOptions& options) {
                                            "(--rate overrides)", record.source, record.rate_hz));
       }
     }
+    LoadOptions text = options;
     if (!(record.rate_hz > 0.0) && options.time_column.empty() && options.file != "-") {
       if (const auto time_column = timestamp_column(options.file)) {
         record.notes.push_back(record.source + ": column '" + *time_column + "' is read as the timestamps "
                                "(its name says so); pass --time-column to choose another, or --rate");
-        LoadOptions timed = options;
-        timed.time_column = *time_column;
-        load_text(timed, record, to_si);
-        if (record.n_samples == 0) throw InputError(record.source + ": no samples");
-        record.name = record.source;
-        return record;
+        text.time_column = *time_column;
       }
     }
-    load_text(options, record, to_si);
+    load_text(text, record, to_si);
   }
+  // Every path has checked the phase for overflow: finish_rates, or the binary stream.
   if (record.n_samples == 0) throw InputError(record.source + ": no samples");
-  require_finite_phase(record);
   record.name = record.source;
   return record;
 }
