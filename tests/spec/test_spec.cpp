@@ -14,7 +14,8 @@
 namespace imunoise {
 namespace {
 
-const std::filesystem::path kRepo = std::filesystem::path(__FILE__).parent_path() / ".." / "..";
+// From the data directory CMake names, not __FILE__: a compiler cache may make __FILE__ relative.
+const std::filesystem::path kRepo = std::filesystem::path(IMUNOISE_TEST_DATA_DIR).parent_path().parent_path();
 
 constexpr double deg = std::numbers::pi / 180.0;
 
