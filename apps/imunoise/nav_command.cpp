@@ -35,6 +35,7 @@ struct NavOptionsCli {
   unsigned threads = 0;
   std::optional<double> sigma_eps_deg_s;
   bool no_earth_rate = false;
+  bool signed_constants = false;
   std::string format = "table";
   OutputOptions output;
 };
@@ -89,6 +90,7 @@ void run_nav(const NavOptionsCli& o) {
   options.models = nav::parse_models(o.models);
   options.runs = o.runs;
   options.seed = o.seed;
+  options.signed_constants = o.signed_constants;
   options.threads = o.threads;
   if (o.sigma_eps_deg_s) options.paper_sigma_eps_rad_s = *o.sigma_eps_deg_s * unit.to_si;
   if (options.step_s > options.duration_s) options.step_s = options.duration_s;
@@ -142,6 +144,9 @@ void setup_nav(CLI::App& app) {
   cmd->add_option("--model", o->models, "comma list of paper, schuler, covariance, montecarlo (or all)")
       ->capture_default_str();
   cmd->add_option("--runs", o->runs, "Monte-Carlo runs")->capture_default_str();
+  cmd->add_flag("--signed-constants", o->signed_constants,
+                "Monte Carlo: --bias and --R as signed values, the same in every run (default: random "
+                "constants per axis with that standard deviation, as the covariance model reads them)");
   cmd->add_option("--seed", o->seed, "Monte-Carlo seed; results depend only on it, not on --threads")
       ->capture_default_str();
   cmd->add_option("--threads", o->threads, "Monte-Carlo threads (0: all cores)");

@@ -31,7 +31,7 @@ nav::GyroAxisNoise from_fit_object(const py::handle& fit, const std::string& nam
 py::object nav_call(double N, double B, double K, double Q, double R, double bias, double gm_sigma, double gm_tau,
                     const std::string& units, const py::object& fit, double hours, double latitude, double velocity,
                     double step, double dt, const py::object& model, std::size_t runs, std::uint64_t seed,
-                    unsigned threads, std::optional<double> sigma_eps, bool earth_rate) {
+                    unsigned threads, std::optional<double> sigma_eps, bool earth_rate, bool signed_constants) {
   const Unit unit = parse_unit(units);
   if (unit.quantity != Quantity::angular_rate) {
     throw InputError("units='" + units + "' is not an angular rate: give gyro coefficients, e.g. units='deg/s'");
@@ -68,6 +68,7 @@ py::object nav_call(double N, double B, double K, double Q, double R, double bia
   o.models = nav::parse_models(models);
   o.runs = runs;
   o.seed = seed;
+  o.signed_constants = signed_constants;
   o.threads = threads;
   if (sigma_eps) o.paper_sigma_eps_rad_s = *sigma_eps * unit.to_si;
   nav::NavResult result;
@@ -95,10 +96,12 @@ void register_nav(py::module_& m) {
         py::arg("latitude") = 58.5, py::arg("velocity") = 0.0, py::arg("step") = 60.0, py::arg("dt") = 1.0,
         py::arg("model") = "schuler,covariance", py::arg("runs") = 1000, py::arg("seed") = 1,
         py::arg("threads") = 0, py::arg("sigma_eps") = py::none(), py::arg("earth_rate") = true,
+        py::arg("signed_constants") = false,
         "Navigation error growth (RMS latitude, longitude, path, radial vs time) from gyro noise given in `units` "
         "(N unit*sqrt(s), B unit, K unit/sqrt(s), Q unit*s, R unit/s, bias unit) or fit=imunoise.fit(...) dict "
         "(or a list of three: x north, y east, z down). model: 'paper', 'schuler', 'covariance', 'montecarlo' "
-        "(comma string or list). Returns the dict of `imunoise nav --format json`; each model's series "
+        "(comma string or list); signed_constants: the Monte Carlo takes bias and R as signed values, the same in "
+        "every run (default: random constants per axis with that standard deviation, as the covariance). Returns the dict of `imunoise nav --format json`; each model's series "
         "(t_s, lat_deg, lon_deg, path_m, north_m, east_m, radial_m, ...) are NumPy arrays.");
 }
 

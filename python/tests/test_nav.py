@@ -41,6 +41,17 @@ def test_montecarlo_has_standard_errors():
     assert np.all(np.isfinite(mc["path_m"]))
 
 
+def test_montecarlo_drift_random_by_default_signed_on_request():
+    # A drift alone: signed, every run is the same (no spread, the mean equals the RMS);
+    # by default a random constant per run and axis, so the mean is within its sampling error.
+    kw = dict(bias=0.01, model="montecarlo", runs=200, hours=0.5, step=600)
+    signed = imunoise.nav(signed_constants=True, **kw)["models"][0]
+    assert abs(signed["east_mean_m"][-1]) == pytest.approx(signed["east_m"][-1], rel=1e-9)
+    random = imunoise.nav(**kw)["models"][0]
+    assert abs(random["east_mean_m"][-1]) < 4 * random["east_mean_se_m"][-1]
+    assert random["east_mean_se_m"][-1] > 0
+
+
 def test_bad_input():
     with pytest.raises(ValueError, match="angular rate"):
         imunoise.nav(N=1e-3, units="m/s^2")

@@ -72,6 +72,21 @@ std::uint64_t run_seed(std::uint64_t seed, std::size_t run) {
   return mix.next();
 }
 
+// One run's channels: the drift and the ramp of each axis as given (signed), or drawn as random
+// constants N(0, given^2) from the run's own stream (channel 3, disjoint from the axes' 0..2).
+// Two draws per axis whatever is present, so a run's draws do not depend on the model.
+std::array<sim::ChannelSpec, 3> run_specs(const std::array<sim::ChannelSpec, 3>& specs, std::uint64_t run_seed,
+                                          bool signed_constants) {
+  std::array<sim::ChannelSpec, 3> run = specs;
+  if (signed_constants) return run;
+  sim::NormalGenerator z(sim::make_stream(run_seed, 3, 0));
+  for (sim::ChannelSpec& c : run) {
+    c.noise.bias_unit *= z();
+    c.noise.r_unit_per_s *= z();
+  }
+  return run;
+}
+
 }  // namespace
 
 ModelSeries montecarlo_series(const NavOptions& o, const AxisTerms& terms, const std::vector<double>& t_s) {
@@ -100,9 +115,10 @@ ModelSeries montecarlo_series(const NavOptions& o, const AxisTerms& terms, const
     for (auto& e : eps) e.resize(kChunk);
     for (std::size_t r = b * kBlockRuns; r < std::min(runs, (b + 1) * kBlockRuns); ++r) {
       const std::uint64_t seed = run_seed(o.seed, r);
+      const std::array<sim::ChannelSpec, 3> run = run_specs(specs, seed, o.signed_constants);
       std::vector<sim::ChannelGenerator> gens;
       gens.reserve(3);
-      for (int a = 0; a < 3; ++a) gens.emplace_back(specs[static_cast<std::size_t>(a)], rate_hz, o.duration_s, seed, static_cast<std::uint64_t>(a));
+      for (int a = 0; a < 3; ++a) gens.emplace_back(run[static_cast<std::size_t>(a)], rate_hz, o.duration_s, seed, static_cast<std::uint64_t>(a));
       Eigen::Matrix<double, detail::kNavStates, 1> state = Eigen::Matrix<double, detail::kNavStates, 1>::Zero();
       std::size_t next = 0;
       while (next < times && report_step[next] == 0) sums.add(next++, 0.0, 0.0);
@@ -184,10 +200,13 @@ ModelSeries montecarlo_series(const NavOptions& o, const AxisTerms& terms, const
       "the covariance model's nav error states (same F, Earth rate {}) driven by gyro samples from the "
       "project's simulator at {:.6g} Hz (each sample the exact average of the continuous noise over dt; the "
       "states see it as piecewise constant); {} runs, seed {} (run r: SplitMix64 of seed + r golden, channel "
-      "= axis), any thread count; RMS over runs with standard errors (delta method on the mean square); bias "
-      "and ramp are deterministic in each run (positive sign), so their share of the RMS is exact and the "
-      "mean is not zero when they are present",
-      o.earth_rate ? "on" : "off", rate_hz, runs, o.seed);
+      "= axis), any thread count; RMS over runs with standard errors (delta method on the mean square); {}",
+      o.earth_rate ? "on" : "off", rate_hz, runs, o.seed,
+      o.signed_constants
+          ? "constant drift and ramp as given, signed and the same in every run (--signed-constants), so the "
+            "mean is not zero when they are present and drifts on several axes add with their signs"
+          : "constant drift and ramp drawn per run and axis as independent random constants with the given "
+            "value as standard deviation, as the covariance and Schuler models read them");
   return s;
 }
 

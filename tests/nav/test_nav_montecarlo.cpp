@@ -99,14 +99,50 @@ TEST(NavMonteCarlo, ResultDoesNotDependOnTheThreadCount) {
   EXPECT_NE(one.models[0].north_m.back(), other.models[0].north_m.back());
 }
 
+// Drift and ramp on every axis: by default each run draws them as independent random
+// constants per axis, the covariance model's reading, so the two agree by the same test. The
+// navigation error is then linear in Gaussian constants and noise, so the Gaussian standard
+// error of the header holds. 0.01 deg/s, as a user would give it: with the signed values the
+// Monte Carlo answered 5736 km where the covariance answered 4860 km.
+NavOptions drift_and_ramp(std::size_t runs) {
+  NavOptions o = tg100(runs);
+  for (auto& a : o.axes) {
+    a.bias_rad_s = 0.01 * kDeg;
+    a.coefficients.rate_ramp = present(2e-7 * kDeg);
+  }
+  return o;
+}
+
+TEST(NavMonteCarlo, RandomDriftAndRampPerAxisAgreeWithCovariance) { expect_agreement(drift_and_ramp(300)); }
+
+// The signed reading answers another question (drifts on several axes add with their signs):
+// it must disagree with the covariance, which shows the test above can fail.
+TEST(NavMonteCarlo, SignedDriftsOnEveryAxisDisagreeWithCovariance) {
+  NavOptions o = tg100(40);
+  for (auto& a : o.axes) a.bias_rad_s = 0.01 * kDeg;
+  o.signed_constants = true;
+  const NavResult r = navigation_error(o);
+  const ModelSeries& cov = r.models[0];
+  const MonteCarloStats& st = *r.models[1].montecarlo;
+  double worst_ms = 0.0, worst_mean = 0.0;
+  for (std::size_t i = 1; i < cov.t_s.size(); ++i) {
+    const double var_e = cov.east_m[i] * cov.east_m[i];
+    worst_ms = std::max(worst_ms, std::abs(st.ms_east_m2[i] - var_e) / st.se_ms_east_m2[i]);
+    worst_mean = std::max(worst_mean, std::abs(st.mean_east_m[i]) / st.se_mean_east_m[i]);
+  }
+  std::printf("signed drifts: worst |z| mean square %.1f, mean %.1f\n", worst_ms, worst_mean);
+  EXPECT_GT(std::max(worst_ms, worst_mean), 4.0);
+}
+
 // A constant drift is the same in every run and exactly piecewise constant: the Monte Carlo
 // then equals the covariance to rounding, which checks the discrete input matrix and the
 // accumulation independently of any statistics.
-// (One axis at a time: drifts on several axes add with their signs in a run, while the
+// (Signed, one axis at a time: drifts on several axes add with their signs in a run, while the
 // covariance model treats each as an independent drift of unknown sign.)
 TEST(NavMonteCarlo, ConstantDriftIsReproducedExactly) {
   for (std::size_t axis = 0; axis < 3; ++axis) {
     NavOptions o = tg100(4);
+    o.signed_constants = true;
     for (auto& a : o.axes) a = GyroAxisNoise{};
     o.axes[axis].bias_rad_s = -2.0 * units::deg_per_h_to_rad_per_s;
     const NavResult r = navigation_error(o);

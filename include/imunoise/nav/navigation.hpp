@@ -75,6 +75,11 @@ struct NavOptions {
   std::vector<Model> models{Model::schuler, Model::covariance};
   std::size_t runs = 1000;       ///< Monte-Carlo runs
   std::uint64_t seed = 1;        ///< Monte-Carlo seed
+  /// montecarlo: the constant drift and the rate ramp of each axis as given, signed and the
+  /// same in every run. Default (false): each run draws them per axis as independent random
+  /// constants with that standard deviation, the question the covariance and Schuler models
+  /// answer (a drift of unknown sign), so that every model gives the same RMS.
+  bool signed_constants = false;
   unsigned threads = 0;          ///< Monte-Carlo threads (0: hardware); results do not depend on it
   /// paper model: sigma_eps (rad/s); unset: the paper's reading, N's value taken as a rate
   /// (N in deg/sqrt(s) read as deg/s), east axis.
