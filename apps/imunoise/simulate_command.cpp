@@ -1,14 +1,8 @@
 // imunoise simulate: synthetic sensor output with a given noise model (or the paper's preset),
 // streamed in chunks to text or raw binary, reproducible bit for bit from its seed.
 #include <algorithm>
-#include <bit>
-#include <cmath>
-#include <cstdio>
-#include <cstring>
-#include <filesystem>
+#include <limits>
 #include <memory>
-#include <numbers>
-#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -21,8 +15,7 @@
 #include "imunoise/io/atomic_output.hpp"
 #include "imunoise/sim/describe.hpp"
 #include "imunoise/sim/generator.hpp"
-#include "imunoise/sim/presets.hpp"
-#include "imunoise/units.hpp"
+#include "imunoise/sim/request.hpp"
 
 namespace imunoise::cli {
 namespace {
@@ -52,71 +45,34 @@ struct SimulateOptionsCli {
   CLI::Option* range_option = nullptr;
 };
 
-sim::SimulationSpec build_spec(const SimulateOptionsCli& o, std::string& unit_name) {
-  sim::SimulationSpec spec;
-  spec.duration_s = o.duration_s;
-  spec.seed = o.seed;
-  const bool output_given = o.volts_per_unit != 0.0;
-  if (!o.preset.empty()) {
-    const sim::Preset preset = sim::find_preset(o.preset);
-    for (const CLI::Option* opt : o.noise_options) {
-      if (opt->count() > 0) {
-        throw InputError(opt->get_name() + " cannot be combined with --preset " + o.preset +
-                         " (the preset fixes the noise model; drop one of them)");
-      }
-    }
-    if (o.channels_option->count() > 0) {
-      throw InputError("--channels cannot be combined with --preset " + o.preset + " (it has " +
-                       std::to_string(preset.channels.size()) + " channels)");
-    }
-    if (o.units_option->count() > 0 && parse_unit(o.units).name != preset.unit) {
-      throw InputError("the " + o.preset + " preset's coefficients are in " + preset.unit +
-                       "; drop --units or give --units " + preset.unit);
-    }
-    unit_name = preset.unit;
-    spec.rate_hz = o.rate_option->count() > 0 ? o.rate_hz : preset.rate_hz;
-    spec.channels = preset.channels;
-  } else {
-    if (o.rate_option->count() == 0) {
-      throw InputError("--rate HZ is required (the sample rate), unless --preset is given");
-    }
-    const Unit unit = parse_unit(o.units);
-    if (unit.quantity != Quantity::angular_rate && unit.quantity != Quantity::acceleration &&
-        unit.quantity != Quantity::dimensionless) {
-      throw InputError("--units " + o.units +
-                       " is not a rate unit; give the unit of the sensor output, e.g. deg/s, rad/s, m/s^2, g");
-    }
-    unit_name = unit.name;
-    spec.rate_hz = o.rate_hz;
-    if (o.channels == 0) throw InputError("--channels must be at least 1");
-    for (std::size_t c = 0; c < o.channels; ++c) {
-      sim::ChannelSpec ch;
-      ch.noise = o.noise;
-      spec.channels.push_back(ch);
-    }
+sim::SimulationRequest to_request(const SimulateOptionsCli& o) {
+  sim::SimulationRequest r;
+  if (o.rate_option->count() > 0) r.rate_hz = o.rate_hz;
+  r.duration_s = o.duration_s;
+  r.seed = o.seed;
+  r.noise = o.noise;
+  for (const CLI::Option* opt : o.noise_options) {
+    if (opt->count() > 0) r.noise_given.push_back(opt->get_name());
   }
-  for (auto& ch : spec.channels) {
-    // A preset keeps its own measurement range unless --range is given.
-    if (o.range_option->count() > 0 || o.preset.empty()) ch.output.range_unit = o.range;
-    ch.output.scale_factor = o.scale_factor * (output_given ? o.volts_per_unit : 1.0);
-    ch.output.offset_output = o.offset;
-    ch.output.lsb_output = o.lsb;
-  }
-  if (o.volts_per_unit < 0.0 || !std::isfinite(o.volts_per_unit)) {  // 0 = not given
-    throw InputError("--volts-per-unit must be positive (e.g. 0.02 for the TG-100's 20 mV/(deg/s))");
-  }
-  return spec;
+  if (o.range_option->count() > 0) r.range_unit = o.range;
+  r.scale_factor = o.scale_factor;
+  r.volts_per_unit = o.volts_per_unit;
+  r.offset_output = o.offset;
+  r.lsb_output = o.lsb;
+  if (o.units_option->count() > 0) r.unit = o.units;
+  r.preset = o.preset;
+  if (o.channels_option->count() > 0) r.channels = o.channels;
+  return r;
 }
 
 void run_simulate(const SimulateOptionsCli& o) {
   if (o.format != "text" && o.format != "f64" && o.format != "f32") {
     throw InputError("--format " + o.format + " is not known; use text, f64 or f32");
   }
-  std::string unit;
-  const sim::SimulationSpec spec = build_spec(o, unit);
-  sim::Generator generator(spec);  // validates every parameter before the file is created
-  const std::string output_unit =
-      o.volts_per_unit != 0.0 ? "V" : (o.scale_factor != 1.0 ? unit + " (scaled)" : unit);
+  const sim::SimulationPlan plan = sim::plan_simulation(to_request(o));
+  const std::string& unit = plan.unit;
+  const std::string& output_unit = plan.output_unit;
+  sim::Generator generator(plan.spec);  // validates every parameter before the file is created
   const std::size_t channels = generator.channel_count();
   const unsigned threads = o.threads == 0 ? std::max(1U, std::thread::hardware_concurrency()) : o.threads;
 
