@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/nav/navigation.hpp"
+#include "imunoise/nav/request.hpp"
 #include "imunoise/nav/report.hpp"
 #include "imunoise/units.hpp"
 #include "output.hpp"
@@ -40,61 +41,37 @@ struct NavOptionsCli {
   OutputOptions output;
 };
 
-nav::GyroAxisNoise axis_from_options(const NavOptionsCli& o, const Unit& unit) {
-  return nav::axis_from_coefficients({o.q, o.n, o.b, o.k, o.r, o.gm_sigma, o.gm_tau}, unit, {"--", '-'});
+nav::NavRequest to_request(const NavOptionsCli& o) {
+  nav::NavRequest r;
+  r.coefficients = {o.q, o.n, o.b, o.k, o.r, o.gm_sigma, o.gm_tau};
+  for (const CLI::Option* opt : o.coefficient_options) r.coefficients_given = r.coefficients_given || opt->count() > 0;
+  if (!o.from.empty()) r.fitted_axes.fill(nav::axis_from_fit_file(o.from));
+  const std::string* per_axis[] = {&o.from_x, &o.from_y, &o.from_z};
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (!per_axis[a]->empty()) r.fitted_axes[a] = nav::axis_from_fit_file(*per_axis[a]);
+  }
+  r.bias = o.bias;
+  r.units = o.units;
+  r.hours = o.hours;
+  r.latitude_deg = o.latitude_deg;
+  r.velocity_m_s = o.velocity;
+  r.step_s = o.step_s;
+  r.dt_s = o.dt_s;
+  r.models = o.models;
+  r.runs = o.runs;
+  r.seed = o.seed;
+  r.threads = o.threads;
+  r.sigma_eps = o.sigma_eps_deg_s;
+  r.earth_rate = !o.no_earth_rate;
+  r.signed_constants = o.signed_constants;
+  return r;
 }
 
 void run_nav(const NavOptionsCli& o) {
   if (o.format != "table" && o.format != "json" && o.format != "csv") {
     throw InputError("unknown --format '" + o.format + "'; use table, json or csv");
   }
-  const Unit unit = parse_unit(o.units);
-  if (unit.quantity != Quantity::angular_rate) {
-    throw InputError("--units " + o.units + " is not an angular rate (" + std::string(quantity_name(unit.quantity)) +
-                     "): the navigation error needs gyro coefficients, e.g. --units deg/s, rad/s or deg/h");
-  }
-  if (!std::isfinite(o.bias)) throw InputError("--bias must be finite");
-  bool coefficients_given = false;
-  for (const CLI::Option* opt : o.coefficient_options) coefficients_given = coefficients_given || opt->count() > 0;
-  const bool any_from = !o.from.empty() || !o.from_x.empty() || !o.from_y.empty() || !o.from_z.empty();
-  if (coefficients_given && any_from) {
-    throw InputError("give the noise either as coefficients (--N --B --K --Q --R --gm-sigma) or with --from FIT.json, "
-                     "not both (--bias may be added to either)");
-  }
-  if (!(o.hours > 0.0) || !std::isfinite(o.hours)) {
-    throw InputError("--hours must be positive (the operating time, e.g. --hours 1)");
-  }
-  if (std::abs(o.latitude_deg) > 90.0 || !std::isfinite(o.latitude_deg)) {
-    throw InputError("--latitude " + fmt::format("{:g}", o.latitude_deg) +
-                     " is beyond +-90 deg; give the latitude in degrees within [-90, 90]");
-  }
-
-  nav::NavOptions options;
-  nav::GyroAxisNoise common = axis_from_options(o, unit);
-  if (!o.from.empty()) common = nav::axis_from_fit_file(o.from);
-  for (auto& a : options.axes) a = common;
-  const std::string* per_axis[] = {&o.from_x, &o.from_y, &o.from_z};
-  for (std::size_t a = 0; a < 3; ++a) {
-    if (!per_axis[a]->empty()) options.axes[a] = nav::axis_from_fit_file(*per_axis[a]);
-  }
-  if (any_from && o.from.empty() && (o.from_x.empty() || o.from_y.empty() || o.from_z.empty())) {
-    throw InputError("with per-axis fits give all three of --from-x, --from-y, --from-z (or --from for every axis)");
-  }
-  for (auto& a : options.axes) a.bias_rad_s = o.bias * unit.to_si;
-  options.duration_s = o.hours * 3600.0;
-  options.step_s = o.step_s;
-  options.dt_s = o.dt_s;
-  options.latitude_rad = o.latitude_deg * std::numbers::pi / 180.0;
-  options.velocity_m_s = o.velocity;
-  options.earth_rate = !o.no_earth_rate;
-  options.models = nav::parse_models(o.models);
-  options.runs = o.runs;
-  options.seed = o.seed;
-  options.signed_constants = o.signed_constants;
-  options.threads = o.threads;
-  if (o.sigma_eps_deg_s) options.paper_sigma_eps_rad_s = *o.sigma_eps_deg_s * unit.to_si;
-  if (options.step_s > options.duration_s) options.step_s = options.duration_s;
-
+  const nav::NavOptions options = nav::plan_navigation(to_request(o));
   const nav::NavResult result = nav::navigation_error(options);
   std::string text;
   if (o.format == "json") {

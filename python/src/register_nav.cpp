@@ -4,17 +4,17 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <cmath>
-#include <numbers>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
 #include "imunoise/error.hpp"
 #include "imunoise/nav/navigation.hpp"
 #include "imunoise/nav/report.hpp"
+#include "imunoise/nav/request.hpp"
 #include "imunoise/units.hpp"
 #include "to_python.hpp"
 
@@ -32,45 +32,37 @@ py::object nav_call(double N, double B, double K, double Q, double R, double bia
                     const std::string& units, const py::object& fit, double hours, double latitude, double velocity,
                     double step, double dt, const py::object& model, std::size_t runs, std::uint64_t seed,
                     unsigned threads, std::optional<double> sigma_eps, bool earth_rate, bool signed_constants) {
-  const Unit unit = parse_unit(units);
-  if (unit.quantity != Quantity::angular_rate) {
-    throw InputError("units='" + units + "' is not an angular rate: give gyro coefficients, e.g. units='deg/s'");
-  }
-  if (!(hours > 0.0) || !std::isfinite(hours)) throw InputError("hours must be positive");
-  if (!(std::abs(latitude) <= 90.0)) throw InputError("latitude must lie within [-90, 90] deg");
-  nav::NavOptions o;
-  const bool coefficients = N != 0 || B != 0 || K != 0 || Q != 0 || R != 0 || gm_sigma != 0;
-  if (!fit.is_none() && coefficients) throw InputError("give either coefficients or fit=..., not both");
-  if (fit.is_none()) {
-    const nav::GyroAxisNoise a = nav::axis_from_coefficients({Q, N, B, K, R, gm_sigma, gm_tau}, unit, {"", '_'});
-    for (auto& x : o.axes) x = a;
-  } else if (py::isinstance<py::dict>(fit)) {
-    const nav::GyroAxisNoise a = from_fit_object(fit, "fit");
-    for (auto& x : o.axes) x = a;
-  } else {
+  nav::NavRequest r;
+  r.names = {"", '_'};
+  r.coefficients = {Q, N, B, K, R, gm_sigma, gm_tau};
+  r.coefficients_given = N != 0 || B != 0 || K != 0 || Q != 0 || R != 0 || gm_sigma != 0;
+  if (py::isinstance<py::dict>(fit)) {
+    r.fitted_axes.fill(from_fit_object(fit, "fit"));
+  } else if (!fit.is_none()) {
     const auto list = fit.cast<std::vector<py::object>>();
     if (list.size() != 3) throw InputError("fit must be one fit dict or a list of three (x north, y east, z down)");
-    for (std::size_t i = 0; i < 3; ++i) o.axes[i] = from_fit_object(list[i], "fit[" + std::to_string(i) + "]");
+    for (std::size_t i = 0; i < 3; ++i) r.fitted_axes[i] = from_fit_object(list[i], fmt::format("fit[{}]", i));
   }
-  for (auto& x : o.axes) x.bias_rad_s = bias * unit.to_si;
-  o.duration_s = hours * 3600.0;
-  o.step_s = std::min(step, o.duration_s);
-  o.dt_s = dt;
-  o.latitude_rad = latitude * std::numbers::pi / 180.0;
-  o.velocity_m_s = velocity;
-  o.earth_rate = earth_rate;
-  std::string models;
+  r.bias = bias;
+  r.units = units;
+  r.hours = hours;
+  r.latitude_deg = latitude;
+  r.velocity_m_s = velocity;
+  r.step_s = step;
+  r.dt_s = dt;
   if (py::isinstance<py::str>(model)) {
-    models = model.cast<std::string>();
+    r.models = model.cast<std::string>();
   } else {
-    for (const auto& m : model.cast<std::vector<std::string>>()) models += (models.empty() ? "" : ",") + m;
+    r.models.clear();
+    for (const auto& m : model.cast<std::vector<std::string>>()) r.models += (r.models.empty() ? "" : ",") + m;
   }
-  o.models = nav::parse_models(models);
-  o.runs = runs;
-  o.seed = seed;
-  o.signed_constants = signed_constants;
-  o.threads = threads;
-  if (sigma_eps) o.paper_sigma_eps_rad_s = *sigma_eps * unit.to_si;
+  r.runs = runs;
+  r.seed = seed;
+  r.threads = threads;
+  r.sigma_eps = sigma_eps;
+  r.earth_rate = earth_rate;
+  r.signed_constants = signed_constants;
+  const nav::NavOptions o = nav::plan_navigation(r);
   nav::NavResult result;
   {
     py::gil_scoped_release release;
