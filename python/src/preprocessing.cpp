@@ -85,7 +85,7 @@ PreparedRecord prepare_record(std::span<const double> samples, const py::object&
     r.timing = io::check_timing(time_s, "array", nullptr, args.gaps != "fail");
     if (rate > 0.0 && std::abs(r.timing->rate_hz / rate - 1.0) > 0.01) {
       throw InputError("array: rate " + std::to_string(rate) + " Hz disagrees with the timestamps (" +
-                       std::to_string(r.timing->rate_hz) + " Hz from the median interval); fix: drop rate");
+                       fmt::format("{:.6g}", r.timing->rate_hz) + " Hz from the median interval); fix: drop rate");
     }
     if (!(rate > 0.0)) rate = r.timing->rate_hz;
     if (args.gaps == "split") {

@@ -15,6 +15,7 @@
 #include <variant>
 #include <vector>
 
+#include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
 #include "imunoise/error.hpp"
@@ -122,7 +123,7 @@ PyRecording read(const std::string& path, const std::optional<std::string>& topi
     out.rate_hz = out.timing->rate_hz;
     if (rate && std::abs(out.rate_hz / *rate - 1.0) > 0.01) {
       throw InputError(path + ": rate " + std::to_string(*rate) + " Hz disagrees with the file's timestamps (" +
-                       std::to_string(out.rate_hz) + " Hz from the median interval); drop rate");
+                       fmt::format("{:.6g}", out.rate_hz) + " Hz from the median interval); drop rate");
     }
   } else if (rate) {
     if (!(*rate > 0.0) || !std::isfinite(*rate)) throw InputError("rate must be positive and finite (Hz)");
@@ -229,7 +230,7 @@ void register_recording(py::module_& m) {
         std::string text = "<imunoise.Recording " + r.recording.source + " (" + std::string(io::format_name(r.recording.format));
         if (!r.recording.stream.empty()) text += " " + r.recording.stream;
         text += "): " + std::to_string(r.recording.sample_count()) + " samples of " + r.recording.channel_list();
-        if (std::isfinite(r.rate_hz)) text += " at " + std::to_string(r.rate_hz) + " Hz";
+        if (std::isfinite(r.rate_hz)) text += fmt::format(" at {:.6g} Hz", r.rate_hz);
         return text + ">";
       });
   m.def("read", &read, py::arg("path"), py::arg("topic") = py::none(), py::arg("dataset") = py::none(),

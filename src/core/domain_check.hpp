@@ -5,6 +5,8 @@
 #include <span>
 #include <string>
 
+#include <fmt/core.h>
+
 #include "imunoise/error.hpp"
 #include "imunoise/estimator.hpp"
 
@@ -14,7 +16,7 @@ inline void check_factors(Estimator estimator, std::span<const double> phase, do
                           std::span<const std::size_t> factors) {
   if (!(tau0_s > 0.0) || !std::isfinite(tau0_s)) {
     throw InputError("the sample interval must be positive and finite, got " +
-                     std::to_string(tau0_s) + " s; check --rate");
+                     fmt::format("{:g}", tau0_s) + " s; check --rate");
   }
   const std::size_t max_m = max_averaging_factor(estimator, phase.size());
   for (const std::size_t m : factors) {

@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/core.h>
+
 #include "domain_check.hpp"
 #include "imunoise/allan.hpp"
 #include "imunoise/error.hpp"
@@ -184,7 +186,7 @@ std::vector<std::size_t> estimator_averaging_factors(Estimator estimator, const 
         const double m = std::round(exact);
         if (!(m >= 2.0) || std::fabs(exact - m) > 1e-6 * m || static_cast<std::size_t>(m) % 2 != 0 ||
             m > static_cast<double>(max_m)) {
-          throw InputError(name + ": tau = " + std::to_string(tau_s) +
+          throw InputError(name + ": tau = " + fmt::format("{:g}", tau_s) +
                            " s is not 0.75 m / rate for an even m in 2.." + std::to_string(max_m) +
                            " (" + name + " taus are 1.5, 3, 4.5, ... sample intervals)");
         }

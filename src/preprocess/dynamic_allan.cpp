@@ -4,6 +4,8 @@
 #include <cmath>
 #include <string>
 
+#include <fmt/core.h>
+
 #include "imunoise/allan.hpp"
 #include "imunoise/confidence/interval.hpp"
 #include "imunoise/error.hpp"
@@ -20,7 +22,7 @@ DavarResult dynamic_allan(std::span<const double> rate_si, double rate_hz, const
   const auto window = static_cast<std::size_t>(std::llround(r.window_s * rate_hz));
   const auto step = std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(r.step_s * rate_hz)));
   if (window < 100 || window > n || n - window < step) {
-    throw InputError("dynamic Allan variance: a window of " + std::to_string(r.window_s) + " s (" +
+    throw InputError("dynamic Allan variance: a window of " + fmt::format("{:g}", r.window_s) + " s (" +
                      std::to_string(window) + " samples) needs at least two windows of >= 100 samples in a record of " +
                      std::to_string(n) + " samples; fix: choose a shorter window");
   }

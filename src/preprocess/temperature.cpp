@@ -18,7 +18,7 @@ std::vector<TemperatureBin> temperature_bins(std::span<const double> rate_si, st
                                              const fit::FitOptions* fit_options,
                                              std::span<const std::size_t> breaks) {
   if (!(bin_width > 0.0) || !std::isfinite(bin_width)) {
-    throw InputError("temperature bin width must be positive, got " + std::to_string(bin_width) +
+    throw InputError("temperature bin width must be positive, got " + fmt::format("{:g}", bin_width) +
                      "; fix: pass e.g. --temperature-bin 5");
   }
   if (rate_si.size() != temperature.size()) {
