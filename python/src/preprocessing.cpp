@@ -84,7 +84,7 @@ PreparedRecord prepare_record(std::span<const double> samples, const py::object&
     const auto time_s = vector_of(args.time, "time", values.size());
     r.timing = io::check_timing(time_s, "array", nullptr, args.gaps != "fail");
     if (rate > 0.0 && std::abs(r.timing->rate_hz / rate - 1.0) > 0.01) {
-      throw InputError("array: rate " + std::to_string(rate) + " Hz disagrees with the timestamps (" +
+      throw InputError("array: rate " + fmt::format("{:g}", rate) + " Hz disagrees with the timestamps (" +
                        fmt::format("{:.6g}", r.timing->rate_hz) + " Hz from the median interval); fix: drop rate");
     }
     if (!(rate > 0.0)) rate = r.timing->rate_hz;
@@ -95,7 +95,7 @@ PreparedRecord prepare_record(std::span<const double> samples, const py::object&
     throw InputError("gaps='split' needs the timestamps: pass time=recording.time_s (seconds, one per sample)");
   }
   if (!(rate > 0.0) || !std::isfinite(rate)) {
-    throw InputError("rate must be positive and finite (Hz), or given by time=; got " + std::to_string(rate));
+    throw InputError("rate must be positive and finite (Hz), or given by time=; got " + fmt::format("{:g}", rate));
   }
   r.rate_hz = rate;
   r.unit_given = !units.empty();

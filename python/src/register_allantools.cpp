@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/core.h>
+
 #include "imunoise/confidence/edf.hpp"
 #include "imunoise/confidence/interval.hpp"
 #include "imunoise/confidence/noise_id.hpp"
@@ -36,7 +38,7 @@ py::tuple deviation_at_factors(const std::string& name, const Array& phase_array
                                const std::vector<std::size_t>& factors, unsigned threads) {
   const Estimator estimator = parse_estimator(name);
   if (!(rate > 0) || !std::isfinite(rate)) {
-    throw InputError("rate must be positive and finite (Hz), got " + std::to_string(rate));
+    throw InputError("rate must be positive and finite (Hz), got " + fmt::format("{:g}", rate));
   }
   const auto phase = view(phase_array);
   std::vector<DevPoint> points;
@@ -66,7 +68,7 @@ py::tuple deviation_at_factors(const std::string& name, const Array& phase_array
 // compensated (phase.hpp).
 py::array_t<double> integrate_frequency(const Array& freq, double rate) {
   if (!(rate > 0) || !std::isfinite(rate)) {
-    throw InputError("rate must be positive and finite (Hz), got " + std::to_string(rate));
+    throw InputError("rate must be positive and finite (Hz), got " + fmt::format("{:g}", rate));
   }
   const auto y = view(freq);
   std::vector<double> x;

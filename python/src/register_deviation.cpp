@@ -8,6 +8,8 @@
 #include <span>
 #include <string>
 
+#include <fmt/core.h>
+
 #include "imunoise/deviation.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/finite.hpp"
@@ -55,7 +57,7 @@ void require_finite(std::span<const double> samples, Estimator estimator, std::s
 py::tuple deviation(const std::string& name, const Array& data, double rate,
                     const std::string& data_type, const py::object& taus, unsigned threads) {
   const Estimator estimator = parse_estimator(name);
-  if (!(rate > 0)) throw InputError("rate must be positive (Hz), got " + std::to_string(rate));
+  if (!(rate > 0)) throw InputError("rate must be positive (Hz), got " + fmt::format("{:g}", rate));
   const auto samples = view(data);
   const double tau0_s = 1.0 / rate;
   std::vector<double> integrated;

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include <fmt/core.h>
+
 #include "imunoise/allan.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/finite.hpp"
@@ -63,7 +65,7 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
                      const PreprocessArgs& preprocessing) {
   if (data.ndim() != 1) throw InputError("data must be a 1-D array, got " + std::to_string(data.ndim()) + "-D");
   if (!(rate > 0) || !std::isfinite(rate)) {
-    throw InputError("rate must be positive and finite (Hz), got " + std::to_string(rate));
+    throw InputError("rate must be positive and finite (Hz), got " + fmt::format("{:g}", rate));
   }
   const std::span<const double> samples(data.data(), static_cast<std::size_t>(data.shape(0)));
   fit::FitOptions options;

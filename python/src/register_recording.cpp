@@ -122,7 +122,7 @@ PyRecording read(const std::string& path, const std::optional<std::string>& topi
     io::require_ordered(*out.timing, out.recording.source);
     out.rate_hz = out.timing->rate_hz;
     if (rate && std::abs(out.rate_hz / *rate - 1.0) > 0.01) {
-      throw InputError(path + ": rate " + std::to_string(*rate) + " Hz disagrees with the file's timestamps (" +
+      throw InputError(path + ": rate " + fmt::format("{:g}", *rate) + " Hz disagrees with the file's timestamps (" +
                        fmt::format("{:.6g}", out.rate_hz) + " Hz from the median interval); drop rate");
     }
   } else if (rate) {

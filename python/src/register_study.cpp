@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/core.h>
 #include <nlohmann/json.hpp>
 
 #include "imunoise/comma_list.hpp"
@@ -118,7 +119,7 @@ py::object analyze(const py::object& channels, double rate, const py::object& un
                    double nav_hours, const py::object& estimators, bool keep_going,
                    const py::object& output_dir, bool force) {
   if (!(rate > 0.0) || !std::isfinite(rate)) {
-    throw InputError("rate must be positive and finite (Hz), got " + std::to_string(rate));
+    throw InputError("rate must be positive and finite (Hz), got " + fmt::format("{:g}", rate));
   }
   if (!(nav_hours > 0.0) || !std::isfinite(nav_hours)) {
     throw InputError("nav_hours must be positive and finite (h)");
