@@ -24,8 +24,7 @@ namespace imunoise::python {
 namespace {
 
 nav::GyroAxisNoise from_fit_object(const py::handle& fit, const std::string& name) {
-  const std::string text = py::module_::import("json").attr("dumps")(fit).cast<std::string>();
-  return nav::axis_from_fit_json(nlohmann::json::parse(text), name);
+  return nav::axis_from_fit_json(from_python(fit, name), name);
 }
 
 py::object nav_call(double N, double B, double K, double Q, double R, double bias, double gm_sigma, double gm_tau,
