@@ -64,29 +64,13 @@ study::SensorOptions analysis_options(const FleetOptionsCli& options) {
   return a;
 }
 
-// The per-file step: load the record and study it (imunoise/study/sensor.hpp).
+// The per-file step (imunoise/fleet/fleet.hpp): load the record and study it.
 fleet::SensorOutcome analyze_file(const FleetOptionsCli& options, const study::SensorOptions& analysis,
                                   std::size_t index) {
-  fleet::SensorOutcome outcome;
-  outcome.file = options.inputs.files[index];
   load::LoadOptions input = options.inputs.load;
-  input.file = outcome.file;
+  input.file = options.inputs.files[index];
   input.column = options.inputs.columns;
-  try {
-    const Record record = load::load(input);
-    outcome.fit = study::sensor_json(record, analysis, study::study_sensor(record, analysis));
-  } catch (const InputError& e) {
-    outcome.error = e.what();
-  } catch (const std::bad_alloc&) {
-    outcome.error = "out of memory";
-  } catch (const std::exception& e) {
-    outcome.error = std::string("internal error: ") + e.what();
-  }
-  if (!outcome.error.empty()) {
-    outcome.fit = nullptr;
-    if (outcome.error.rfind(outcome.file, 0) != 0) outcome.error = outcome.file + ": " + outcome.error;
-  }
-  return outcome;
+  return fleet::study_file(input, analysis);
 }
 
 void report_failure(const fleet::SensorOutcome& outcome, bool strict) {
@@ -124,7 +108,7 @@ std::vector<fleet::SensorOutcome> dispatch(const FleetOptionsCli& options, const
     fleet::SensorOutcome outcome;
     const std::size_t index = fleet::decode_outcome(bytes, options.inputs.files, outcome);
     results[index] = std::move(outcome);
-    if (results[index].fit.is_null()) {
+    if (!results[index].ok()) {
       report_failure(results[index], options.strict);
       if (options.strict && first_failure == nullptr) first_failure = &results[index];
     }
@@ -163,7 +147,7 @@ void run_fleet(const FleetOptionsCli& options) {
   if (ranks.size() == 1) {
     for (std::size_t i = 0; i < options.inputs.files.size(); ++i) {
       results.push_back(analyze_file(options, analysis, i));
-      if (results.back().fit.is_null()) {
+      if (!results.back().ok()) {
         if (options.strict) fail_strict(results.back());
         report_failure(results.back(), false);
       }
@@ -174,9 +158,10 @@ void run_fleet(const FleetOptionsCli& options) {
   }
   fleet::FleetRules rules;
   rules.outlier_z = options.outlier_z;
-  const nlohmann::json doc = fleet::fleet_document(results, rules);
+  const fleet::FleetSummary summary = fleet::summarize_fleet(results, rules);
+  const nlohmann::json doc = fleet::fleet_document(results, summary);
   write_output({json_path, options.force}, doc.dump(1) + "\n");
-  write_output({csv_path, options.force}, fleet::fleet_csv(doc));
+  write_output({csv_path, options.force}, fleet::fleet_csv(results, summary));
   study::WriteOptions report_options;
   report_options.force = options.force;
   const auto report = fleet::write_fleet_report(doc, options.dir, report_options, options.title);
