@@ -33,6 +33,8 @@ py::object nav_call(double N, double B, double K, double Q, double R, double bia
                     unsigned threads, std::optional<double> sigma_eps, bool earth_rate, bool signed_constants) {
   nav::NavRequest r;
   r.names = {"", '_'};
+  r.fit_option = "fit=";
+  r.per_axis_fit_option = "fit=[x, y, z]";
   r.coefficients = {Q, N, B, K, R, gm_sigma, gm_tau};
   r.coefficients_given = N != 0 || B != 0 || K != 0 || Q != 0 || R != 0 || gm_sigma != 0;
   if (py::isinstance<py::dict>(fit)) {
