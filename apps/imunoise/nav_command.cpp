@@ -24,6 +24,9 @@ struct NavOptionsCli {
   double q = 0, n = 0, b = 0, k = 0, r = 0, bias = 0, gm_sigma = 0, gm_tau = 0;
   std::vector<CLI::Option*> coefficient_options;
   std::string units = "deg/s";
+  double accel_q = 0, accel_n = 0, accel_b = 0, accel_k = 0, accel_r = 0, accel_bias = 0, accel_gm_sigma = 0,
+         accel_gm_tau = 0;
+  std::string accel_units = "m/s^2";
   std::string from, from_x, from_y, from_z;
   double hours = 1.0;
   double latitude_deg = 58.5;
@@ -50,6 +53,9 @@ nav::NavRequest to_request(const NavOptionsCli& o) {
   for (std::size_t a = 0; a < 3; ++a) {
     if (!per_axis[a]->empty()) r.fitted_axes[a] = nav::axis_from_fit_file(*per_axis[a]);
   }
+  r.accel_coefficients = {o.accel_q, o.accel_n, o.accel_b, o.accel_k, o.accel_r, o.accel_gm_sigma, o.accel_gm_tau};
+  r.accel_bias = o.accel_bias;
+  r.accel_units = o.accel_units;
   r.bias = o.bias;
   r.units = o.units;
   r.hours = o.hours;
@@ -92,8 +98,8 @@ void run_nav(const NavOptionsCli& o) {
 void setup_nav(CLI::App& app) {
   auto o = std::make_shared<NavOptionsCli>();
   CLI::App* cmd = app.add_subcommand(
-      "nav", "navigation error growth (latitude, longitude, path, radial) from the gyro noise: the paper's eq. 6, "
-             "Schuler closed forms, NED covariance, Monte Carlo");
+      "nav", "navigation error growth (latitude, longitude, path, radial) from the gyro and accelerometer noise: "
+             "the paper's eq. 6, Schuler closed forms, NED covariance, Monte Carlo");
   auto coefficient = [&](const char* name, double& field, const char* help) {
     o->coefficient_options.push_back(cmd->add_option(name, field, help));
   };
@@ -106,6 +112,16 @@ void setup_nav(CLI::App& app) {
   coefficient("--gm-tau", o->gm_tau, "its correlation time (s)");
   cmd->add_option("--bias", o->bias, "constant drift, unit (deg/s); enters as an RMS of |bias|");
   cmd->add_option("--units", o->units, "angular-rate unit of the coefficients (deg/s, rad/s, deg/h, ...)")
+      ->capture_default_str();
+  cmd->add_option("--accel-N", o->accel_n, "accelerometer velocity random walk N, accel unit*sqrt(s) (m/s/sqrt(s))");
+  cmd->add_option("--accel-B", o->accel_b, "accelerometer bias instability B, accel unit (m/s^2)");
+  cmd->add_option("--accel-K", o->accel_k, "accelerometer acceleration random walk K, accel unit/sqrt(s)");
+  cmd->add_option("--accel-Q", o->accel_q, "accelerometer velocity quantization Q, accel unit*s (m/s)");
+  cmd->add_option("--accel-R", o->accel_r, "accelerometer ramp R, accel unit/s (m/s^3)");
+  cmd->add_option("--accel-gm-sigma", o->accel_gm_sigma, "accelerometer Gauss-Markov sigma, accel unit");
+  cmd->add_option("--accel-gm-tau", o->accel_gm_tau, "its correlation time (s)");
+  cmd->add_option("--accel-bias", o->accel_bias, "constant accelerometer bias, accel unit; enters as an RMS of |bias|");
+  cmd->add_option("--accel-units", o->accel_units, "unit of the accelerometer coefficients: m/s^2, g, mg, ug")
       ->capture_default_str();
   cmd->add_option("--from", o->from, "noise of every axis from FIT.json (`imunoise fit ... --format json`)");
   cmd->add_option("--from-x", o->from_x, "north (x) gyro's FIT.json");

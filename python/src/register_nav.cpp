@@ -30,7 +30,9 @@ nav::GyroAxisNoise from_fit_object(const py::handle& fit, const std::string& nam
 py::object nav_call(double N, double B, double K, double Q, double R, double bias, double gm_sigma, double gm_tau,
                     const std::string& units, const py::object& fit, double hours, double latitude, double velocity,
                     double step, double dt, const py::object& model, std::size_t runs, std::uint64_t seed,
-                    unsigned threads, std::optional<double> sigma_eps, bool earth_rate, bool signed_constants) {
+                    unsigned threads, std::optional<double> sigma_eps, bool earth_rate, bool signed_constants,
+                    double accel_N, double accel_B, double accel_K, double accel_Q, double accel_R, double accel_bias,
+                    double accel_gm_sigma, double accel_gm_tau, const std::string& accel_units) {
   nav::NavRequest r;
   r.names = {"", '_'};
   r.fit_option = "fit=";
@@ -44,6 +46,9 @@ py::object nav_call(double N, double B, double K, double Q, double R, double bia
     if (list.size() != 3) throw InputError("fit must be one fit dict or a list of three (x north, y east, z down)");
     for (std::size_t i = 0; i < 3; ++i) r.fitted_axes[i] = from_fit_object(list[i], fmt::format("fit[{}]", i));
   }
+  r.accel_coefficients = {accel_Q, accel_N, accel_B, accel_K, accel_R, accel_gm_sigma, accel_gm_tau};
+  r.accel_bias = accel_bias;
+  r.accel_units = accel_units;
   r.bias = bias;
   r.units = units;
   r.hours = hours;
@@ -89,10 +94,14 @@ void register_nav(py::module_& m) {
         py::arg("latitude") = 58.5, py::arg("velocity") = 0.0, py::arg("step") = 60.0, py::arg("dt") = 1.0,
         py::arg("model") = "schuler,covariance", py::arg("runs") = 1000, py::arg("seed") = 1,
         py::arg("threads") = 0, py::arg("sigma_eps") = py::none(), py::arg("earth_rate") = true,
-        py::arg("signed_constants") = false,
+        py::arg("signed_constants") = false, py::arg("accel_N") = 0.0, py::arg("accel_B") = 0.0,
+        py::arg("accel_K") = 0.0, py::arg("accel_Q") = 0.0, py::arg("accel_R") = 0.0, py::arg("accel_bias") = 0.0,
+        py::arg("accel_gm_sigma") = 0.0, py::arg("accel_gm_tau") = 0.0, py::arg("accel_units") = "m/s^2",
         "Navigation error growth (RMS latitude, longitude, path, radial vs time) from gyro noise given in `units` "
         "(N unit*sqrt(s), B unit, K unit/sqrt(s), Q unit*s, R unit/s, bias unit) or fit=imunoise.fit(...) dict "
-        "(or a list of three: x north, y east, z down). model: 'paper', 'schuler', 'covariance', 'montecarlo' "
+        "(or a list of three: x north, y east, z down), and accelerometer noise accel_N (velocity random walk), "
+        "accel_B, accel_K, accel_Q, accel_R, accel_bias, accel_gm_sigma/accel_gm_tau in accel_units (m/s^2, g, mg, "
+        "ug; N in accel_units*sqrt(s)), the same on every axis. model: 'paper', 'schuler', 'covariance', 'montecarlo' "
         "(comma string or list); signed_constants: the Monte Carlo takes bias and R as signed values, the same in "
         "every run (default: random constants per axis with that standard deviation, as the covariance). Returns the dict of `imunoise nav --format json`; each model's series "
         "(t_s, lat_deg, lon_deg, path_m, north_m, east_m, radial_m, ...) are NumPy arrays.");

@@ -66,3 +66,21 @@ def test_bad_input():
     r = imunoise.nav(N=1e-3, latitude=90, model="schuler")
     assert r["models"][0]["lon_deg"] is None
     assert r["models"][0]["path_m"][-1] > 0
+
+
+def test_accelerometer_bias_is_the_bounded_schuler_oscillation():
+    # A 1 mg north accelerometer bias alone: path = (b / w0^2)(1 - cos w0 t), peak 2 R b / g
+    # = 12.76 km at half the Schuler period (2533 s); the covariance model gives the same.
+    r = imunoise.nav(accel_bias=1.0, accel_units="mg", model=["schuler", "covariance"], earth_rate=False,
+                     hours=1.0, step=1.0)
+    schuler, cov = r["models"]
+    w0 = r["earth"]["schuler_frequency_rad_s"]
+    t = schuler["t_s"]
+    b = 1e-3 * 9.80665
+    expected = b / w0**2 * (1 - np.cos(w0 * t))
+    assert np.allclose(schuler["path_m"], expected, rtol=1e-9, atol=1e-9)
+    assert np.allclose(cov["path_m"], expected, rtol=1e-9, atol=1e-6)
+    assert schuler["path_m"].max() == pytest.approx(2 * 6.38e6 * b / 9.81, rel=1e-6)
+    assert r["accel_axes"][0]["customary"]["bias_ug"] == pytest.approx(1000.0)
+    with pytest.raises(ValueError, match="accel_units deg/s is not an acceleration"):
+        imunoise.nav(accel_N=1.0, accel_units="deg/s")

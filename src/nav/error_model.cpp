@@ -48,18 +48,30 @@ Eigen::VectorXd step_input(const Eigen::MatrixXd& f, const Eigen::VectorXd& b, d
 
 FlickerRange flicker_range(const NavOptions& o) { return {o.dt_s, std::max(o.duration_s, 10.0 * o.dt_s)}; }
 
-AxisProcesses axis_processes(const GyroTerms& t, const FlickerRange& range) {
+SensorTerms sensor_terms(const GyroTerms& t) {
+  return {t.q_rad, t.n_rad_sqrt_s, t.b_rad_s, t.k_rad_s_sqrt_s, t.r_rad_s2, t.gm_sigma_rad_s, t.gm_time_s, t.bias_rad_s};
+}
+
+SensorTerms sensor_terms(const AccelTerms& t) {
+  return {t.q_m_s, t.n_m_s_sqrt_s, t.b_m_s2, t.k_m_s2_sqrt_s, t.r_m_s3, t.gm_sigma_m_s2, t.gm_time_s, t.bias_m_s2};
+}
+
+AxisProcesses axis_processes(const SensorTerms& t, const FlickerRange& range) {
   AxisProcesses p;
-  double white2 = t.n_rad_sqrt_s * t.n_rad_sqrt_s;
-  if (t.b_rad_s > 0.0) {
-    const sim::FlickerBank bank = sim::design_flicker_bank(t.b_rad_s, range.tau_min_s, range.tau_max_s);
+  double white2 = t.n * t.n;
+  if (t.b > 0.0) {
+    const sim::FlickerBank bank = sim::design_flicker_bank(t.b, range.tau_min_s, range.tau_max_s);
     p.gauss_markov = bank.poles;
     white2 += bank.white_n_unit_sqrt_s * bank.white_n_unit_sqrt_s;
   }
-  if (t.gm_sigma_rad_s > 0.0) p.gauss_markov.push_back({t.gm_sigma_rad_s, t.gm_time_s});
-  p.white_n_rad_sqrt_s = std::sqrt(white2);
+  if (t.gm_sigma > 0.0) p.gauss_markov.push_back({t.gm_sigma, t.gm_time_s});
+  p.white_n = std::sqrt(white2);
   return p;
 }
+
+SensorInput gyro_input(int axis) { return {4 + axis, -1.0}; }
+
+SensorInput accel_input(const NavOptions& o, int axis) { return {2 + axis, 1.0 / (o.earth.radius_m * w0_of(o))}; }
 
 NavMatrix nav_dynamics(const NavOptions& o) {
   const double w0 = w0_of(o);
@@ -92,57 +104,73 @@ NavStep nav_step(const NavOptions& o) {
   s.phi = (f * o.dt_s).exp();
   const Eigen::MatrixXd fd = f;
   for (int a = 0; a < 3; ++a) {
+    const SensorInput in = gyro_input(a);
     Eigen::VectorXd b = Eigen::VectorXd::Zero(kNavStates);
-    b(4 + a) = -1.0;  // eps enters psi_a' with a minus sign
+    b(in.target) = in.gain;
     s.gamma.col(a) = step_input(fd, b, o.dt_s);
+  }
+  for (int a = 0; a < 2; ++a) {
+    const SensorInput in = accel_input(o, a);
+    Eigen::VectorXd b = Eigen::VectorXd::Zero(kNavStates);
+    b(in.target) = in.gain;
+    s.accel_gamma.col(a) = step_input(fd, b, o.dt_s);
   }
   return s;
 }
 
-DiscreteModel discrete_model(const NavOptions& o, const std::array<GyroTerms, 3>& terms) {
+DiscreteModel discrete_model(const NavOptions& o, const std::array<GyroTerms, 3>& gyro,
+                             const std::array<AccelTerms, 3>& accel) {
   const double w0 = w0_of(o);
   const double h = o.dt_s;
   const FlickerRange range = flicker_range(o);
 
-  // Count and place the noise states.
-  struct AxisLayout {
+  // The sensors that reach the horizontal channels, and where their noise states go.
+  struct Sensor {
+    SensorTerms t;
+    SensorInput in;
     int rrw = -1, bias = -1, ramp = -1, quant = -1;
     std::vector<int> gm;
     AxisProcesses proc;
   };
-  std::array<AxisLayout, 3> layout;
+  std::vector<Sensor> sensors;
+  auto add = [&](const SensorTerms& t, SensorInput in) {
+    Sensor l;
+    l.t = t;
+    l.in = in;
+    sensors.push_back(std::move(l));
+  };
+  for (int a = 0; a < 3; ++a) add(sensor_terms(gyro[static_cast<std::size_t>(a)]), gyro_input(a));
+  for (int a = 0; a < 2; ++a) add(sensor_terms(accel[static_cast<std::size_t>(a)]), accel_input(o, a));
   int n = kNavStates;
-  for (int a = 0; a < 3; ++a) {
-    const GyroTerms& t = terms[static_cast<std::size_t>(a)];
-    AxisLayout& l = layout[static_cast<std::size_t>(a)];
-    l.proc = axis_processes(t, range);
-    if (t.k_rad_s_sqrt_s > 0.0) l.rrw = n++;
-    if (t.bias_rad_s != 0.0) l.bias = n++;
-    if (t.r_rad_s2 != 0.0) {
+  for (Sensor& l : sensors) {
+    l.proc = axis_processes(l.t, range);
+    if (l.t.k > 0.0) l.rrw = n++;
+    if (l.t.bias != 0.0) l.bias = n++;
+    if (l.t.r != 0.0) {
       l.ramp = n;
       n += 2;
     }
     for (std::size_t i = 0; i < l.proc.gauss_markov.size(); ++i) l.gm.push_back(n++);
   }
   const int n_continuous = n;
-  for (int a = 0; a < 3; ++a) {
-    if (terms[static_cast<std::size_t>(a)].q_rad > 0.0) layout[static_cast<std::size_t>(a)].quant = n++;
+  for (Sensor& l : sensors) {
+    if (l.t.q > 0.0) l.quant = n++;
   }
 
   Eigen::MatrixXd f = Eigen::MatrixXd::Zero(n_continuous, n_continuous);
   f.topLeftCorner(kNavStates, kNavStates) = nav_dynamics(o);
   Eigen::MatrixXd p0 = Eigen::MatrixXd::Zero(n, n);
   std::vector<WhiteSource> sources;
-  for (int a = 0; a < 3; ++a) {
-    const GyroTerms& t = terms[static_cast<std::size_t>(a)];
-    const AxisLayout& l = layout[static_cast<std::size_t>(a)];
-    const int psi = 4 + a;
-    auto feed = [&](int state) { f(psi, state) = -w0; };  // eps_a = w0 * (scaled state)
-    if (l.proc.white_n_rad_sqrt_s > 0.0) {
+  for (const Sensor& l : sensors) {
+    // The noise state of an error u holds u |gain| / w0.
+    auto scaled = [&](double u) { return u * std::abs(l.in.gain) / w0; };
+    auto sq = [](double v) { return v * v; };
+    auto feed = [&](int state) { f(l.in.target, state) = (l.in.gain < 0 ? -1.0 : 1.0) * w0; };
+    if (l.proc.white_n > 0.0) {
       WhiteSource s;
       s.g = Eigen::VectorXd::Zero(n_continuous);
-      s.g(psi) = -1.0;
-      s.q = l.proc.white_n_rad_sqrt_s * l.proc.white_n_rad_sqrt_s;
+      s.g(l.in.target) = l.in.gain;
+      s.q = l.proc.white_n * l.proc.white_n;
       sources.push_back(s);
     }
     if (l.rrw >= 0) {
@@ -151,30 +179,30 @@ DiscreteModel discrete_model(const NavOptions& o, const std::array<GyroTerms, 3>
       s.state = l.rrw;
       s.g = Eigen::VectorXd::Zero(n_continuous);
       s.g(l.rrw) = 1.0;
-      s.q = (t.k_rad_s_sqrt_s / w0) * (t.k_rad_s_sqrt_s / w0);
+      s.q = sq(scaled(l.t.k));
       sources.push_back(s);
     }
     if (l.bias >= 0) {
       feed(l.bias);
-      p0(l.bias, l.bias) = (t.bias_rad_s / w0) * (t.bias_rad_s / w0);
+      p0(l.bias, l.bias) = sq(scaled(l.t.bias));
     }
     if (l.ramp >= 0) {
-      // eps = r t: scaled state e = eps / w0 with e' = s, s = r / w0 constant, e(0) = 0.
+      // u = r t: the state e = scaled(u) has e' = s, s = scaled(r) constant, e(0) = 0.
       feed(l.ramp);
       f(l.ramp, l.ramp + 1) = 1.0;
-      p0(l.ramp + 1, l.ramp + 1) = (t.r_rad_s2 / w0) * (t.r_rad_s2 / w0);
+      p0(l.ramp + 1, l.ramp + 1) = sq(scaled(l.t.r));
     }
     for (std::size_t i = 0; i < l.gm.size(); ++i) {
       const int st = l.gm[i];
       const sim::GaussMarkovPole& pole = l.proc.gauss_markov[i];
       feed(st);
       f(st, st) = -1.0 / pole.time_s;
-      p0(st, st) = (pole.sigma_unit / w0) * (pole.sigma_unit / w0);  // started stationary
+      p0(st, st) = sq(scaled(pole.sigma_unit));  // started stationary
       WhiteSource s;
       s.state = st;
       s.g = Eigen::VectorXd::Zero(n_continuous);
       s.g(st) = 1.0;
-      s.q = 2.0 * (pole.sigma_unit / w0) * (pole.sigma_unit / w0) / pole.time_s;
+      s.q = 2.0 * sq(scaled(pole.sigma_unit)) / pole.time_s;
       sources.push_back(s);
     }
   }
@@ -201,22 +229,20 @@ DiscreteModel discrete_model(const NavOptions& o, const std::array<GyroTerms, 3>
       for (Eigen::Index j = 0; j < m; ++j) d.qd(idx[static_cast<std::size_t>(i)], idx[static_cast<std::size_t>(j)]) += q(i, j);
     }
   }
-  // Quantization: eps_k = (q_{k+1} - q_k) / h over step k, q white with RMS Q (the
-  // simulator's model). The state holds q_k; the new q_{k+1} is this step's noise.
+  // Quantization: u_k = (q_{k+1} - q_k) / h over step k, q white with RMS Q (the simulator's
+  // model). The state holds q_k; the new q_{k+1} is this step's noise.
   const Eigen::MatrixXd fnav = nav_dynamics(o);
-  for (int a = 0; a < 3; ++a) {
-    const AxisLayout& l = layout[static_cast<std::size_t>(a)];
+  for (const Sensor& l : sensors) {
     if (l.quant < 0) continue;
-    const double q = terms[static_cast<std::size_t>(a)].q_rad;
     Eigen::VectorXd b = Eigen::VectorXd::Zero(kNavStates);
-    b(4 + a) = -1.0;
+    b(l.in.target) = l.in.gain;
     const Eigen::VectorXd gamma = step_input(fnav, b, h) / h;
     d.phi.block(0, l.quant, kNavStates, 1) = -gamma;
     Eigen::VectorXd col = Eigen::VectorXd::Zero(n);
     col.head(kNavStates) = gamma;
     col(l.quant) = 1.0;
-    d.qd += col * col.transpose() * (q * q);
-    p0(l.quant, l.quant) = q * q;
+    d.qd += col * col.transpose() * (l.t.q * l.t.q);
+    p0(l.quant, l.quant) = l.t.q * l.t.q;
   }
   d.p0 = p0;
   return d;

@@ -32,14 +32,30 @@ void fill_from_variances(const NavOptions& o, double var_n, double var_e, ModelS
 // Variance of the position angle of one Schuler channel driven by one gyro's terms.
 double channel_variance(const GyroTerms& t, const detail::FlickerRange& range, double h, double time,
                         double w0) {
-  const detail::AxisProcesses p = detail::axis_processes(t, range);
+  const detail::AxisProcesses p = detail::axis_processes(detail::sensor_terms(t), range);
   auto sq = [](double v) { return v * v; };
   double var = sq(schuler::constant_drift_rad(t.bias_rad_s, time, w0)) +
                sq(schuler::rate_ramp_rad(t.r_rad_s2, time, w0)) +
-               sq(schuler::white_rad(p.white_n_rad_sqrt_s, time, w0)) +
+               sq(schuler::white_rad(p.white_n, time, w0)) +
                sq(schuler::random_walk_rad(t.k_rad_s_sqrt_s, time, w0)) +
                sq(schuler::quantization_rad(t.q_rad, h, time, w0));
   for (const auto& gm : p.gauss_markov) var += sq(schuler::gauss_markov_rad(gm.sigma_unit, gm.time_s, time, w0));
+  return var;
+}
+
+// The same for one accelerometer's terms.
+double accel_channel_variance(const AccelTerms& t, const detail::FlickerRange& range, double h, double time,
+                              double w0, double radius_m) {
+  const detail::AxisProcesses p = detail::axis_processes(detail::sensor_terms(t), range);
+  auto sq = [](double v) { return v * v; };
+  double var = sq(schuler::accel_bias_rad(t.bias_m_s2, time, w0, radius_m)) +
+               sq(schuler::accel_ramp_rad(t.r_m_s3, time, w0, radius_m)) +
+               sq(schuler::accel_white_rad(p.white_n, time, w0, radius_m)) +
+               sq(schuler::accel_random_walk_rad(t.k_m_s2_sqrt_s, time, w0, radius_m)) +
+               sq(schuler::accel_quantization_rad(t.q_m_s, h, time, w0, radius_m));
+  for (const auto& gm : p.gauss_markov) {
+    var += sq(schuler::accel_gauss_markov_rad(gm.sigma_unit, gm.time_s, time, w0, radius_m));
+  }
   return var;
 }
 
@@ -68,12 +84,12 @@ void compose(const Eigen::MatrixXd& phi, const Eigen::MatrixXd& qd, long m, Eige
 
 }  // namespace
 
-ModelSeries paper_series(const NavOptions& o, const AxisTerms& terms, const std::vector<double>& t_s) {
+ModelSeries paper_series(const NavOptions& o, const ImuTerms& terms, const std::vector<double>& t_s) {
   ModelSeries s;
   s.model = Model::paper;
   const double w0 = w0_of(o);
   const double eps = o.paper_sigma_eps_rad_s ? *o.paper_sigma_eps_rad_s
-                                              : terms[1].n_rad_sqrt_s * 1.0;  // N's value read as a rate (x 1/sqrt(s))
+                                              : terms.gyro[1].n_rad_sqrt_s * 1.0;  // N's value read as a rate (x 1/sqrt(s))
   s.paper_sigma_eps_rad_s = eps;
   s.assumptions = fmt::format(
       "the paper's eq. 6 as published: lat = (e/w0)|cos w0t - 1|, path = (e R/w0)|sin w0t - w0t|, "
@@ -98,7 +114,7 @@ ModelSeries paper_series(const NavOptions& o, const AxisTerms& terms, const std:
   return s;
 }
 
-ModelSeries schuler_series(const NavOptions& o, const AxisTerms& terms, const std::vector<double>& t_s) {
+ModelSeries schuler_series(const NavOptions& o, const ImuTerms& terms, const std::vector<double>& t_s) {
   ModelSeries s;
   s.model = Model::schuler;
   const double w0 = w0_of(o);
@@ -107,27 +123,31 @@ ModelSeries schuler_series(const NavOptions& o, const AxisTerms& terms, const st
       "single-channel Schuler loop per level axis (w0 = sqrt(g/R) = {:.6g} rad/s, R = {:.6g} m, g = {:.6g} "
       "m/s^2), closed forms per noise term added in variance: constant drift, ramp, white (N), rate random "
       "walk (K), Gauss-Markov, quantization (white angle noise at dt = {:.6g} s); B as the simulator's "
-      "Gauss-Markov bank over [{:.6g}, {:.6g}] s; east gyro -> north error (latitude, path), north gyro -> "
-      "east error (longitude = east / (R cos L)); no Earth rate, no coupling, down gyro ignored",
+      "Gauss-Markov bank over [{:.6g}, {:.6g}] s; east gyro and north accelerometer -> north error (latitude, "
+      "path), north gyro and east accelerometer -> east error (longitude = east / (R cos L)); no Earth rate, no "
+      "coupling, down gyro and down accelerometer ignored",
       w0, o.earth.radius_m, o.earth.gravity_m_s2, o.dt_s, range.tau_min_s, range.tau_max_s);
   for (double t : t_s) {
     s.t_s.push_back(t);
-    const double var_n = channel_variance(terms[1], range, o.dt_s, t, w0);
-    const double var_e = channel_variance(terms[0], range, o.dt_s, t, w0);
+    const double r = o.earth.radius_m;
+    const double var_n = channel_variance(terms.gyro[1], range, o.dt_s, t, w0) +
+                         accel_channel_variance(terms.accel[0], range, o.dt_s, t, w0, r);
+    const double var_e = channel_variance(terms.gyro[0], range, o.dt_s, t, w0) +
+                         accel_channel_variance(terms.accel[1], range, o.dt_s, t, w0, r);
     fill_from_variances(o, var_n, var_e, s);
   }
   return s;
 }
 
-ModelSeries covariance_series(const NavOptions& o, const AxisTerms& terms, const std::vector<double>& t_s) {
+ModelSeries covariance_series(const NavOptions& o, const ImuTerms& terms, const std::vector<double>& t_s) {
   ModelSeries s;
   s.model = Model::covariance;
-  const detail::DiscreteModel d = detail::discrete_model(o, terms);
+  const detail::DiscreteModel d = detail::discrete_model(o, terms.gyro, terms.accel);
   const detail::FlickerRange range = detail::flicker_range(o);
   s.assumptions = fmt::format(
       "linearised NED error model of a stationary level INS at latitude {:.6g} deg: both horizontal "
       "channels and the azimuth (phi-angle form, Titterton & Weston ch. 12), {}; vertical channel not "
-      "modelled; noise as states (rate random walk, bias, ramp, Gauss-Markov, B as the simulator's "
+      "modelled (the down accelerometer left out); gyro and accelerometer noise as states (rate random walk, bias, ramp, Gauss-Markov, B as the simulator's "
       "Gauss-Markov bank over [{:.6g}, {:.6g}] s, quantization at dt); exact discrete transition exp(F dt) "
       "and Van Loan noise at dt = {:.6g} s; P <- Phi P Phi' + Qd (a sum of positive semi-definite terms), "
       "composed by doubling to the reporting step, symmetrized after every product; {} states",

@@ -1,4 +1,5 @@
-// Monte Carlo: the nav error states driven by simulated gyro samples, many seeded runs.
+// Monte Carlo: the nav error states driven by simulated gyro and accelerometer samples, many
+// seeded runs.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
@@ -51,17 +52,23 @@ struct Sums {
   }
 };
 
-sim::ChannelSpec channel_of(const GyroTerms& t, const detail::FlickerRange& range) {
+// Channel streams: gyros 0..2, the gyros' random constants 3, accelerometers x y 4..5, their
+// random constants 6 (so the gyro draws do not change when accelerometers are added).
+constexpr std::uint64_t kGyroConstants = 3;
+constexpr std::uint64_t kAccelChannel0 = 4;
+constexpr std::uint64_t kAccelConstants = 6;
+
+sim::ChannelSpec channel_of(const detail::SensorTerms& t, const detail::FlickerRange& range) {
   sim::ChannelSpec c;
-  sim::NoiseModel& m = c.noise;  // in rad/s: the simulator is unit-agnostic
-  m.q_unit_s = t.q_rad;
-  m.n_unit_sqrt_s = t.n_rad_sqrt_s;
-  m.b_unit = t.b_rad_s;
-  m.k_unit_per_sqrt_s = t.k_rad_s_sqrt_s;
-  m.r_unit_per_s = t.r_rad_s2;
-  m.gm_sigma_unit = t.gm_sigma_rad_s;
+  sim::NoiseModel& m = c.noise;  // in rad/s or m/s^2: the simulator is unit-agnostic
+  m.q_unit_s = t.q;
+  m.n_unit_sqrt_s = t.n;
+  m.b_unit = t.b;
+  m.k_unit_per_sqrt_s = t.k;
+  m.r_unit_per_s = t.r;
+  m.gm_sigma_unit = t.gm_sigma;
   m.gm_time_s = t.gm_time_s;
-  m.bias_unit = t.bias_rad_s;
+  m.bias_unit = t.bias;
   m.flicker_tau_min_s = range.tau_min_s;
   m.flicker_tau_max_s = range.tau_max_s;
   return c;
@@ -73,13 +80,14 @@ std::uint64_t run_seed(std::uint64_t seed, std::size_t run) {
 }
 
 // One run's channels: the drift and the ramp of each axis as given (signed), or drawn as random
-// constants N(0, given^2) from the run's own stream (channel 3, disjoint from the axes' 0..2).
+// constants N(0, given^2) from the run's own stream (`constants`, disjoint from the channels').
 // Two draws per axis whatever is present, so a run's draws do not depend on the model.
-std::array<sim::ChannelSpec, 3> run_specs(const std::array<sim::ChannelSpec, 3>& specs, std::uint64_t run_seed,
-                                          bool signed_constants) {
-  std::array<sim::ChannelSpec, 3> run = specs;
+template <std::size_t N>
+std::array<sim::ChannelSpec, N> run_specs(const std::array<sim::ChannelSpec, N>& specs, std::uint64_t run_seed,
+                                          bool signed_constants, std::uint64_t constants) {
+  std::array<sim::ChannelSpec, N> run = specs;
   if (signed_constants) return run;
-  sim::NormalGenerator z(sim::make_stream(run_seed, 3, 0));
+  sim::NormalGenerator z(sim::make_stream(run_seed, constants, 0));
   for (sim::ChannelSpec& c : run) {
     c.noise.bias_unit *= z();
     c.noise.r_unit_per_s *= z();
@@ -89,16 +97,31 @@ std::array<sim::ChannelSpec, 3> run_specs(const std::array<sim::ChannelSpec, 3>&
 
 }  // namespace
 
-ModelSeries montecarlo_series(const NavOptions& o, const AxisTerms& terms, const std::vector<double>& t_s) {
+ModelSeries montecarlo_series(const NavOptions& o, const ImuTerms& terms, const std::vector<double>& t_s) {
   ModelSeries s;
   s.model = Model::montecarlo;
   const detail::FlickerRange range = detail::flicker_range(o);
   const detail::NavStep step = detail::nav_step(o);
   const double rate_hz = 1.0 / o.dt_s;
   std::array<sim::ChannelSpec, 3> specs;
-  for (int a = 0; a < 3; ++a) specs[static_cast<std::size_t>(a)] = channel_of(terms[static_cast<std::size_t>(a)], range);
+  for (int a = 0; a < 3; ++a) {
+    specs[static_cast<std::size_t>(a)] = channel_of(detail::sensor_terms(terms.gyro[static_cast<std::size_t>(a)]), range);
+  }
+  // The horizontal accelerometers, simulated only when they have a term.
+  std::array<sim::ChannelSpec, 2> accel_specs;
+  bool accelerometers = false;
+  for (int a = 0; a < 2; ++a) {
+    const detail::SensorTerms t = detail::sensor_terms(terms.accel[static_cast<std::size_t>(a)]);
+    accel_specs[static_cast<std::size_t>(a)] = channel_of(t, range);
+    for (double v : {t.q, t.n, t.b, t.k, t.r, t.gm_sigma, t.bias}) accelerometers = accelerometers || v != 0.0;
+  }
   // Validate once, up front, where an InputError can still reach the caller directly.
   for (int a = 0; a < 3; ++a) sim::ChannelGenerator(specs[static_cast<std::size_t>(a)], rate_hz, o.duration_s, o.seed, static_cast<std::uint64_t>(a));
+  if (accelerometers) {
+    for (int a = 0; a < 2; ++a) {
+      sim::ChannelGenerator(accel_specs[static_cast<std::size_t>(a)], rate_hz, o.duration_s, o.seed, kAccelChannel0 + static_cast<std::uint64_t>(a));
+    }
+  }
 
   std::vector<long> report_step;
   for (double t : t_s) report_step.push_back(std::lround(t / o.dt_s));
@@ -113,12 +136,20 @@ ModelSeries montecarlo_series(const NavOptions& o, const AxisTerms& terms, const
     Sums& sums = block_sums[b];
     std::array<std::vector<double>, 3> eps;
     for (auto& e : eps) e.resize(kChunk);
+    std::array<std::vector<double>, 2> acc;
+    for (auto& e : acc) e.resize(accelerometers ? kChunk : 0);
     for (std::size_t r = b * kBlockRuns; r < std::min(runs, (b + 1) * kBlockRuns); ++r) {
       const std::uint64_t seed = run_seed(o.seed, r);
-      const std::array<sim::ChannelSpec, 3> run = run_specs(specs, seed, o.signed_constants);
+      const std::array<sim::ChannelSpec, 3> run = run_specs(specs, seed, o.signed_constants, kGyroConstants);
       std::vector<sim::ChannelGenerator> gens;
-      gens.reserve(3);
+      gens.reserve(5);
       for (int a = 0; a < 3; ++a) gens.emplace_back(run[static_cast<std::size_t>(a)], rate_hz, o.duration_s, seed, static_cast<std::uint64_t>(a));
+      if (accelerometers) {
+        const auto accel_run = run_specs(accel_specs, seed, o.signed_constants, kAccelConstants);
+        for (int a = 0; a < 2; ++a) {
+          gens.emplace_back(accel_run[static_cast<std::size_t>(a)], rate_hz, o.duration_s, seed, kAccelChannel0 + static_cast<std::uint64_t>(a));
+        }
+      }
       Eigen::Matrix<double, detail::kNavStates, 1> state = Eigen::Matrix<double, detail::kNavStates, 1>::Zero();
       std::size_t next = 0;
       while (next < times && report_step[next] == 0) sums.add(next++, 0.0, 0.0);
@@ -126,9 +157,13 @@ ModelSeries montecarlo_series(const NavOptions& o, const AxisTerms& terms, const
       while (k < total_steps) {
         const std::size_t n = static_cast<std::size_t>(std::min<long>(static_cast<long>(kChunk), total_steps - k));
         for (int a = 0; a < 3; ++a) gens[static_cast<std::size_t>(a)].generate(std::span<double>(eps[static_cast<std::size_t>(a)].data(), n));
+        if (accelerometers) {
+          for (int a = 0; a < 2; ++a) gens[3 + static_cast<std::size_t>(a)].generate(std::span<double>(acc[static_cast<std::size_t>(a)].data(), n));
+        }
         for (std::size_t i = 0; i < n; ++i) {
           const Eigen::Vector3d e(eps[0][i], eps[1][i], eps[2][i]);
           state = step.phi * state + step.gamma * e;
+          if (accelerometers) state += step.accel_gamma * Eigen::Vector2d(acc[0][i], acc[1][i]);
           ++k;
           while (next < times && report_step[next] == k) sums.add(next++, state(0), state(1));
         }
@@ -197,11 +232,11 @@ ModelSeries montecarlo_series(const NavOptions& o, const AxisTerms& terms, const
   }
   s.montecarlo = std::move(st);
   s.assumptions = fmt::format(
-      "the covariance model's nav error states (same F, Earth rate {}) driven by gyro samples from the "
+      "the covariance model's nav error states (same F, Earth rate {}) driven by gyro{} samples from the "
       "project's simulator at {:.6g} Hz (each sample the exact average of the continuous noise over dt; the "
       "states see it as piecewise constant); {} runs, seed {} (run r: SplitMix64 of seed + r golden, channel "
       "= axis), any thread count; RMS over runs with standard errors (delta method on the mean square); {}",
-      o.earth_rate ? "on" : "off", rate_hz, runs, o.seed,
+      o.earth_rate ? "on" : "off", accelerometers ? " and horizontal accelerometer" : "", rate_hz, runs, o.seed,
       o.signed_constants
           ? "constant drift and ramp as given, signed and the same in every run (--signed-constants), so the "
             "mean is not zero when they are present and drifts on several axes add with their signs"

@@ -61,6 +61,69 @@ GyroTerms terms_of(const GyroAxisNoise& axis) {
   return t;
 }
 
+AccelTerms terms_of(const AccelAxisNoise& axis) {
+  const NoiseCoefficients& c = axis.coefficients;
+  auto v = [](const Coefficient& k) { return k.identified ? std::abs(k.value) : 0.0; };
+  AccelTerms t;
+  t.q_m_s = v(c.quantization);
+  t.n_m_s_sqrt_s = v(c.random_walk);
+  t.b_m_s2 = v(c.bias_instability);
+  t.k_m_s2_sqrt_s = v(c.rate_random_walk);
+  t.r_m_s3 = c.rate_ramp.identified ? c.rate_ramp.value : 0.0;
+  if (c.gauss_markov && c.gauss_markov->sigma.identified && c.gauss_markov->correlation_time_s.identified &&
+      c.gauss_markov->sigma.value > 0.0) {
+    t.gm_sigma_m_s2 = c.gauss_markov->sigma.value;
+    t.gm_time_s = c.gauss_markov->correlation_time_s.value;
+  }
+  t.bias_m_s2 = axis.bias_m_s2;
+  return t;
+}
+
+namespace {
+
+std::array<double, 7> values_of(const GyroTerms& t) {
+  return {t.q_rad, t.n_rad_sqrt_s, t.b_rad_s, t.k_rad_s_sqrt_s, t.r_rad_s2, t.gm_sigma_rad_s, t.bias_rad_s};
+}
+
+std::array<double, 7> values_of(const AccelTerms& t) {
+  return {t.q_m_s, t.n_m_s_sqrt_s, t.b_m_s2, t.k_m_s2_sqrt_s, t.r_m_s3, t.gm_sigma_m_s2, t.bias_m_s2};
+}
+
+bool any_term(const std::array<AccelTerms, 3>& accel) {
+  for (const auto& t : accel) {
+    for (double v : values_of(t)) {
+      if (v != 0.0) return true;
+    }
+  }
+  return false;
+}
+
+// "Q (all axes)", "R (x,z)": the terms absent on some axes, `prefix` naming the sensor.
+void absent_terms(const std::array<std::array<double, 7>, 3>& values, const std::string& prefix, bool& any,
+                  std::vector<std::string>& out) {
+  const char* names[] = {"Q", "N", "B", "K", "R", "GM", "bias"};
+  const char* axis_names[] = {"x", "y", "z"};
+  for (int j = 0; j < 7; ++j) {
+    std::vector<std::string> missing;
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (values[a][static_cast<std::size_t>(j)] == 0.0) {
+        missing.emplace_back(axis_names[a]);
+      } else {
+        any = true;
+      }
+    }
+    if (missing.size() == 3) {
+      out.push_back(prefix + names[j] + " (all axes)");
+    } else if (!missing.empty()) {
+      std::string list;
+      for (const auto& m : missing) list += (list.empty() ? "" : ",") + m;
+      out.push_back(prefix + names[j] + " (" + list + ")");
+    }
+  }
+}
+
+}  // namespace
+
 bool NavOptions::IsValid(std::string* why) const {
   auto fail = [why](const std::string& m) {
     if (why) *why = m;
@@ -109,6 +172,17 @@ bool NavOptions::IsValid(std::string* why) const {
     if (t.gm_sigma_rad_s > 0.0 && !(t.gm_time_s > 0.0 && std::isfinite(t.gm_time_s))) {
       return fail(std::string("axis ") + axis + ": a Gauss-Markov term needs a positive correlation time");
     }
+    const AccelTerms at = terms_of(accel_axes[a]);
+    if (accel_axes[a].coefficients.quantity != Quantity::acceleration) {
+      return fail(std::string("accelerometer axis ") + axis + ": the noise coefficients are not an accelerometer's (" +
+                  std::string(quantity_name(accel_axes[a].coefficients.quantity)) + ")");
+    }
+    for (double v : values_of(at)) {
+      if (!std::isfinite(v)) return fail(std::string("a noise coefficient of accelerometer axis ") + axis + " is not finite");
+    }
+    if (at.gm_sigma_m_s2 > 0.0 && !(at.gm_time_s > 0.0 && std::isfinite(at.gm_time_s))) {
+      return fail(std::string("accelerometer axis ") + axis + ": a Gauss-Markov term needs a positive correlation time");
+    }
   }
   return true;
 }
@@ -129,34 +203,28 @@ NavResult navigation_error(const NavOptions& options) {
   r.options = options;
   for (std::size_t a = 0; a < 3; ++a) r.terms[a] = terms_of(options.axes[a]);
 
-  // Which terms are absent, per axis; said once for all axes when all lack it.
-  const char* names[] = {"Q", "N", "B", "K", "R", "GM", "bias"};
-  const char* axis_names[] = {"x", "y", "z"};
+  for (std::size_t a = 0; a < 3; ++a) r.accel_terms[a] = terms_of(options.accel_axes[a]);
+  const bool accelerometers = any_term(r.accel_terms);
+
+  // Which terms are absent, per axis; said once for all axes when all lack it. The
+  // accelerometers are listed only when some are given.
   bool any = false;
-  for (int j = 0; j < 7; ++j) {
-    std::vector<std::string> missing;
-    for (std::size_t a = 0; a < 3; ++a) {
-      const GyroTerms& t = r.terms[a];
-      const double v[] = {t.q_rad, t.n_rad_sqrt_s, t.b_rad_s, t.k_rad_s_sqrt_s, t.r_rad_s2, t.gm_sigma_rad_s, t.bias_rad_s};
-      if (v[j] == 0.0) {
-        missing.emplace_back(axis_names[a]);
-      } else {
-        any = true;
-      }
-    }
-    if (missing.size() == 3) {
-      r.absent_terms.push_back(std::string(names[j]) + " (all axes)");
-    } else if (!missing.empty()) {
-      std::string list;
-      for (const auto& m : missing) list += (list.empty() ? "" : ",") + m;
-      r.absent_terms.push_back(std::string(names[j]) + " (" + list + ")");
+  absent_terms({values_of(r.terms[0]), values_of(r.terms[1]), values_of(r.terms[2])}, "", any, r.absent_terms);
+  if (accelerometers) {
+    absent_terms({values_of(r.accel_terms[0]), values_of(r.accel_terms[1]), values_of(r.accel_terms[2])}, "accel ",
+                 any, r.absent_terms);
+    bool down = false;
+    for (double v : values_of(r.accel_terms[2])) down = down || v != 0.0;
+    if (down) {
+      r.notes.push_back("the down (z) accelerometer drives the vertical channel only, which a free-inertial "
+                        "system cannot hold (it diverges) and the models leave out: its terms are not used");
     }
   }
   bool paper_only_with_eps = options.paper_sigma_eps_rad_s.has_value();
   for (Model m : options.models) paper_only_with_eps = paper_only_with_eps && m == Model::paper;
   if (!any && !paper_only_with_eps) {
-    throw InputError("no noise term at all: give at least one of --N --B --K --Q --R --bias (or --from FIT.json "
-                     "with an identified term)");
+    throw InputError("no noise term at all: give at least one of --N --B --K --Q --R --bias, the accelerometer's "
+                     "--accel-N --accel-B --accel-K ... (or --from FIT.json with an identified term)");
   }
   if (!r.absent_terms.empty()) {
     std::string list;
@@ -175,12 +243,13 @@ NavResult navigation_error(const NavOptions& options) {
     }
   }
   r.t_s = report_times(options);
+  const ImuTerms imu{r.terms, r.accel_terms};
   for (Model m : options.models) {
     switch (m) {
-      case Model::paper: r.models.push_back(paper_series(options, r.terms, r.t_s)); break;
-      case Model::schuler: r.models.push_back(schuler_series(options, r.terms, r.t_s)); break;
-      case Model::covariance: r.models.push_back(covariance_series(options, r.terms, r.t_s)); break;
-      case Model::montecarlo: r.models.push_back(montecarlo_series(options, r.terms, r.t_s)); break;
+      case Model::paper: r.models.push_back(paper_series(options, imu, r.t_s)); break;
+      case Model::schuler: r.models.push_back(schuler_series(options, imu, r.t_s)); break;
+      case Model::covariance: r.models.push_back(covariance_series(options, imu, r.t_s)); break;
+      case Model::montecarlo: r.models.push_back(montecarlo_series(options, imu, r.t_s)); break;
     }
   }
   return r;

@@ -64,6 +64,38 @@ double st_lon_se(const ModelSeries& s, std::size_t i, const NavOptions&) {
   return s.east_m[i] > 0 && !s.lon_rad.empty() ? s.montecarlo->se_rms_east_m[i] * s.lon_rad[i] / s.east_m[i] : 0.0;
 }
 
+// SI, and the customary units of accelerometer datasheets: VRW in m/s/sqrt(h), bias
+// instability and bias in ug (1e-6 g), acceleration random walk in m/s/h^1.5.
+nlohmann::json accel_axis_json(const AccelTerms& t, int a) {
+  const char* names[] = {"x", "y", "z"};
+  const char* dirs[] = {"north", "east", "down"};
+  const double ug = 1e-6 * units::g_to_m_per_s2;
+  return {{"axis", names[a]},
+          {"direction", dirs[a]},
+          {"Q_m_s", t.q_m_s},
+          {"N_m_s_sqrt_s", t.n_m_s_sqrt_s},
+          {"B_m_s2", t.b_m_s2},
+          {"K_m_s2_sqrt_s", t.k_m_s2_sqrt_s},
+          {"R_m_s3", t.r_m_s3},
+          {"gm_sigma_m_s2", t.gm_sigma_m_s2},
+          {"gm_time_s", t.gm_time_s},
+          {"bias_m_s2", t.bias_m_s2},
+          {"customary",
+           {{"N_m_s_sqrt_h", t.n_m_s_sqrt_s * units::sqrt_h_to_sqrt_s},
+            {"B_ug", t.b_m_s2 / ug},
+            {"K_m_s_h_sqrt_h", t.k_m_s2_sqrt_s * units::h_to_s * units::sqrt_h_to_sqrt_s},
+            {"bias_ug", t.bias_m_s2 / ug}}}};
+}
+
+bool has_accelerometers(const NavResult& r) {
+  for (const AccelTerms& t : r.accel_terms) {
+    for (double v : {t.q_m_s, t.n_m_s_sqrt_s, t.b_m_s2, t.k_m_s2_sqrt_s, t.r_m_s3, t.gm_sigma_m_s2, t.bias_m_s2}) {
+      if (v != 0.0) return true;
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 nlohmann::json report_json(const NavResult& r) {
@@ -127,6 +159,11 @@ nlohmann::json report_json(const NavResult& r) {
                      {"longitude_defined", r.longitude_defined},
                      {"units", {{"t", "s"}, {"lat", "deg"}, {"lon", "deg"}, {"path", "m"}, {"radial", "m"}}},
                      {"models", std::move(models)}};
+  if (has_accelerometers(r)) {
+    nlohmann::json accel = nlohmann::json::array();
+    for (int a = 0; a < 3; ++a) accel.push_back(accel_axis_json(r.accel_terms[static_cast<std::size_t>(a)], a));
+    doc["accel_axes"] = std::move(accel);
+  }
   if (o.velocity_m_s > 0.0) {
     std::vector<double> d;
     for (double t : r.t_s) d.push_back(o.velocity_m_s * t);
@@ -200,6 +237,15 @@ std::string report_table(const NavResult& r) {
            num(g.q_rad * kDeg) + " deg, R " + num(g.r_rad_s2 * kDeg) + " deg/s^2, bias " +
            num(g.bias_rad_s * kDeg) + " deg/s";
     if (g.gm_sigma_rad_s > 0) out += ", GM " + num(g.gm_sigma_rad_s * kDeg) + " deg/s, " + num(g.gm_time_s) + " s";
+    out += "\n";
+  }
+  for (int a = 0; has_accelerometers(r) && a < 3; ++a) {
+    const AccelTerms& f = r.accel_terms[static_cast<std::size_t>(a)];
+    const char* names[] = {"x (north)", "y (east)", "z (down)"};
+    out += std::string("# accel ") + names[a] + ": N " + num(f.n_m_s_sqrt_s) + " m/s/sqrt(s), B " + num(f.b_m_s2) +
+           " m/s^2, K " + num(f.k_m_s2_sqrt_s) + " m/s^2/sqrt(s), Q " + num(f.q_m_s) + " m/s, R " + num(f.r_m_s3) +
+           " m/s^3, bias " + num(f.bias_m_s2) + " m/s^2";
+    if (f.gm_sigma_m_s2 > 0) out += ", GM " + num(f.gm_sigma_m_s2) + " m/s^2, " + num(f.gm_time_s) + " s";
     out += "\n";
   }
   for (const auto& n : r.notes) out += "# note: " + n + "\n";

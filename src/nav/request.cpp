@@ -48,6 +48,23 @@ std::array<GyroAxisNoise, 3> axes_of(const NavRequest& r, const Unit& unit) {
   return axes;
 }
 
+// The accelerometers' noise, the same on every axis; named "--accel-N" or "accel_N".
+std::array<AccelAxisNoise, 3> accel_axes_of(const NavRequest& r) {
+  const Unit unit = parse_unit(r.accel_units);
+  if (unit.quantity != Quantity::acceleration) {
+    throw InputError(fmt::format("{} {} is not an acceleration ({}): give the accelerometer unit as m/s^2, g, mg or ug",
+                                 option(r.names, "accel-units"), r.accel_units, quantity_name(unit.quantity)));
+  }
+  if (!std::isfinite(r.accel_bias)) throw InputError(option(r.names, "accel-bias") + " must be finite");
+  CoefficientNames names = r.names;
+  names.prefix = option(r.names, "accel-");
+  AccelAxisNoise axis;
+  axis.coefficients = axis_from_coefficients(r.accel_coefficients, unit, names).coefficients;
+  axis.coefficients.quantity = Quantity::acceleration;
+  axis.bias_m_s2 = r.accel_bias * unit.to_si;
+  return {axis, axis, axis};
+}
+
 }  // namespace
 
 NavOptions plan_navigation(const NavRequest& r) {
@@ -62,6 +79,7 @@ NavOptions plan_navigation(const NavRequest& r) {
   }
   NavOptions o;
   o.axes = axes_of(r, unit);
+  o.accel_axes = accel_axes_of(r);
   o.duration_s = r.hours * 3600.0;
   o.step_s = std::min(r.step_s, o.duration_s);
   o.dt_s = r.dt_s;

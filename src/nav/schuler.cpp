@@ -91,6 +91,35 @@ cplx double_integral(cplx l, cplx m, double c, double t) {
   return first + second;
 }
 
+// 1 - cos x, without cancellation for small x: 2 sin^2(x/2).
+double one_minus_cos(double x) {
+  const double s = std::sin(0.5 * x);
+  return 2.0 * s * s;
+}
+
+// int_0^x sin^2 y dy = x/2 - sin(2x)/4, by its series below 1 (it grows like x^3/3).
+double integral_sin_squared(double x) {
+  if (std::abs(x) >= kSeriesBelow) return 0.5 * x - 0.25 * std::sin(2.0 * x);
+  // x/2 - sin(2x)/4 = sum_{k>=1} (-1)^(k+1) (2x)^(2k+1) / (4 (2k+1)!)
+  const double y = 2.0 * x;
+  double term = y * y * y / 6.0, sum = 0.0;
+  for (int k = 1; k <= kSeriesTerms; ++k) {
+    sum += term;
+    term *= -y * y / ((2.0 * k + 2.0) * (2.0 * k + 3.0));
+  }
+  return 0.25 * sum;
+}
+
+// sigma^2 int int h(a) h(b) e^{-|a-b|/T} da db for h(u) = sum_j coef_j e^{lambda_j u}.
+double exponential_sum_variance(const cplx* lambda, const cplx* coef, int n, double sigma, double time_s, double t_s) {
+  const double c = 1.0 / time_s;
+  cplx sum = 0.0;
+  for (int j = 0; j < n; ++j) {
+    for (int k = 0; k < n; ++k) sum += coef[j] * coef[k] * double_integral(lambda[j], lambda[k], c, t_s);
+  }
+  return sigma * sigma * sum.real();
+}
+
 }  // namespace
 
 double frequency_rad_s(double gravity_m_s2, double radius_m) { return std::sqrt(gravity_m_s2 / radius_m); }
@@ -119,13 +148,8 @@ double gauss_markov_rad(double sigma, double time_s, double t_s, double w0) {
   if (sigma == 0.0 || t_s <= 0.0) return 0.0;
   // h(u) = -1 + e^{i w0 u}/2 + e^{-i w0 u}/2
   const cplx lambda[3] = {cplx(0.0, 0.0), cplx(0.0, w0), cplx(0.0, -w0)};
-  const double coef[3] = {-1.0, 0.5, 0.5};
-  const double c = 1.0 / time_s;
-  cplx sum = 0.0;
-  for (int j = 0; j < 3; ++j) {
-    for (int k = 0; k < 3; ++k) sum += coef[j] * coef[k] * double_integral(lambda[j], lambda[k], c, t_s);
-  }
-  const double var = sigma * sigma * sum.real();
+  const cplx coef[3] = {-1.0, 0.5, 0.5};
+  const double var = exponential_sum_variance(lambda, coef, 3, sigma, time_s, t_s);
   return var > 0.0 ? std::sqrt(var) : 0.0;
 }
 
@@ -152,6 +176,60 @@ double quantization_rad(double q, double h, double t_s, double w0) {
     sum = 0.5 * (kd - 1.0) - std::sin((kd - 1.0) * xh) * std::cos(kd * xh) / (2.0 * std::sin(xh));
   }
   const double var = (q / h) * (q / h) * (a1 * a1 + ak * ak + gain * gain * sum);
+  return std::sqrt(var);
+}
+
+double accel_bias_rad(double bias, double t_s, double w0, double radius_m) {
+  return std::abs(bias) * one_minus_cos(w0 * t_s) / (radius_m * w0 * w0);
+}
+
+double accel_ramp_rad(double ramp, double t_s, double w0, double radius_m) {
+  return std::abs(ramp) * x_minus_sin(w0 * t_s) / (radius_m * w0 * w0 * w0);
+}
+
+double accel_white_rad(double n, double t_s, double w0, double radius_m) {
+  return n / (radius_m * w0) * std::sqrt(integral_sin_squared(w0 * t_s) / w0);
+}
+
+double accel_random_walk_rad(double k, double t_s, double w0, double radius_m) {
+  return white_rad(k / (radius_m * w0 * w0), t_s, w0);
+}
+
+double accel_gauss_markov_rad(double sigma, double time_s, double t_s, double w0, double radius_m) {
+  if (sigma == 0.0 || t_s <= 0.0) return 0.0;
+  // h_f(u) = (e^{i w0 u} - e^{-i w0 u}) / (2 i R w0)
+  const cplx lambda[2] = {cplx(0.0, w0), cplx(0.0, -w0)};
+  const cplx unit = 1.0 / (cplx(0.0, 2.0) * radius_m * w0);
+  const cplx coef[2] = {unit, -unit};
+  const double var = exponential_sum_variance(lambda, coef, 2, sigma, time_s, t_s);
+  return var > 0.0 ? std::sqrt(var) : 0.0;
+}
+
+double accel_quantization_rad(double q, double h, double t_s, double w0, double radius_m) {
+  if (q == 0.0) return 0.0;
+  const long k = std::lround(t_s / h);
+  if (k <= 0) return 0.0;
+  const double xh = w0 * h;
+  const double g = radius_m * w0 * w0;
+  // B_m = int_{(m-1)h}^{mh} h_f(u) du = (cos(w0 (m-1) h) - cos(w0 m h)) / g; the response at
+  // t = k h is (1/h) [q_k B_1 - q_0 B_k + sum_{i=1}^{k-1} q_i (B_{k-i+1} - B_{k-i})].
+  const double kd = static_cast<double>(k);
+  const double b1 = one_minus_cos(xh) / g;
+  const double bk = 2.0 * std::sin(xh * (kd - 0.5)) * std::sin(0.5 * xh) / g;
+  const double s_half = std::sin(0.5 * xh);
+  const double gain = 4.0 * s_half * s_half / g;  // B_{m+1} - B_m = gain cos(m xh)
+  // sum_{m=1}^{k-1} cos^2(m xh) = (k-1)/2 + sin((k-1) xh) cos(k xh) / (2 sin xh): both parts
+  // grow like k, so the closed form does not cancel (the direct sum only where sin xh = 0).
+  double sum = 0.0;
+  if (std::abs(std::sin(xh)) > 1e-12) {
+    sum = 0.5 * (kd - 1.0) + std::sin((kd - 1.0) * xh) * std::cos(kd * xh) / (2.0 * std::sin(xh));
+  } else {
+    for (long m = 1; m < k; ++m) {
+      const double c = std::cos(xh * static_cast<double>(m));
+      sum += c * c;
+    }
+  }
+  const double var = (q / h) * (q / h) * (b1 * b1 + bk * bk + gain * gain * sum);
   return std::sqrt(var);
 }
 

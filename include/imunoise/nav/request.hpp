@@ -17,6 +17,11 @@ struct NavRequest {
   bool coefficients_given = false;
   /// Fits per axis (x north, y east, z down): all empty, all three, or the same fit on each.
   std::array<std::optional<GyroAxisNoise>, 3> fitted_axes;
+  /// Every accelerometer axis's coefficients, in `accel_units` (0: absent; N is the velocity
+  /// random walk, K the acceleration random walk, Q the velocity quantization).
+  AxisCoefficients accel_coefficients;
+  double accel_bias = 0.0;            ///< constant accelerometer bias on every axis (`accel_units`)
+  std::string accel_units = "m/s^2";  ///< m/s^2, g, mg, ug
   double bias = 0.0;              ///< constant drift on every axis (`units`), with either
   std::string units = "deg/s";    ///< unit of the coefficients, the bias and sigma_eps
   double hours = 1.0;             ///< operating time (h)
