@@ -29,6 +29,8 @@ struct NavOptionsCli {
   std::string accel_units = "m/s^2";
   std::string from, from_x, from_y, from_z;
   double hours = 1.0;
+  std::vector<double> outage_s;
+  double initial_pos_m = 0.0, initial_vel_m_s = 0.0, initial_att_deg = 0.0;
   double latitude_deg = 58.5;
   double velocity = 0.0;
   double step_s = 60.0;
@@ -59,6 +61,10 @@ nav::NavRequest to_request(const NavOptionsCli& o) {
   r.bias = o.bias;
   r.units = o.units;
   r.hours = o.hours;
+  r.outage_s = o.outage_s;
+  r.initial_pos_m = o.initial_pos_m;
+  r.initial_vel_m_s = o.initial_vel_m_s;
+  r.initial_att_deg = o.initial_att_deg;
   r.latitude_deg = o.latitude_deg;
   r.velocity_m_s = o.velocity;
   r.step_s = o.step_s;
@@ -128,6 +134,13 @@ void setup_nav(CLI::App& app) {
   cmd->add_option("--from-y", o->from_y, "east (y) gyro's FIT.json");
   cmd->add_option("--from-z", o->from_z, "down (z) gyro's FIT.json");
   cmd->add_option("--hours", o->hours, "operating time (h)")->capture_default_str();
+  cmd->add_option("--outage", o->outage_s,
+                  "GNSS outage horizons (s), comma list (10,30,60,300): position, velocity and attitude error from "
+                  "an aided start, with each term's share")
+      ->delimiter(',');
+  cmd->add_option("--initial-pos-m", o->initial_pos_m, "1-sigma position error per axis at the outage start (m)");
+  cmd->add_option("--initial-vel-m-s", o->initial_vel_m_s, "1-sigma velocity error per axis at the outage start (m/s)");
+  cmd->add_option("--initial-att-deg", o->initial_att_deg, "1-sigma attitude error per axis at the outage start (deg)");
   cmd->add_option("--latitude", o->latitude_deg, "latitude (deg), within [-90, 90]; default: Veliky Novgorod")
       ->capture_default_str();
   cmd->add_option("--velocity", o->velocity, "ground speed (m/s): reports the distance travelled beside the error")

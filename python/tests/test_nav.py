@@ -84,3 +84,16 @@ def test_accelerometer_bias_is_the_bounded_schuler_oscillation():
     assert r["accel_axes"][0]["customary"]["bias_ug"] == pytest.approx(1000.0)
     with pytest.raises(ValueError, match="accel_units deg/s is not an acceleration"):
         imunoise.nav(accel_N=1.0, accel_units="deg/s")
+
+
+def test_gnss_outage_with_its_budget():
+    # An initial tilt of 1 mrad alone: the north error R phi0 (1 - cos w0 t), ~ g phi0 t^2 / 2.
+    r = imunoise.nav(N=1e-6, units="rad/s", outage=[10, 60], initial_att_deg=0.0572957795, earth_rate=False,
+                     model="covariance", hours=0.1)
+    ten, sixty = r["outage"]
+    assert ten["t_s"] == 10.0
+    assert ten["north_m"] == pytest.approx(0.5 * 9.81 * 1e-3 * 100, rel=2e-3)
+    assert sum(sixty["budget"].values()) == pytest.approx(1.0, abs=1e-12)
+    assert max(sixty["budget"], key=sixty["budget"].get) == "initial attitude"
+    with pytest.raises(ValueError, match="outage"):
+        imunoise.nav(N=1e-3, outage=[0.25])

@@ -248,4 +248,27 @@ DiscreteModel discrete_model(const NavOptions& o, const std::array<GyroTerms, 3>
   return d;
 }
 
+// (phi_m, q_m) = m steps of x <- phi x + w, cov w = qd, by binary powers; each product is a
+// sum of positive semi-definite terms, symmetrized.
+void compose(const Eigen::MatrixXd& phi, const Eigen::MatrixXd& qd, long m, Eigen::MatrixXd& phi_m,
+             Eigen::MatrixXd& q_m) {
+  const Eigen::Index n = phi.rows();
+  phi_m = Eigen::MatrixXd::Identity(n, n);
+  q_m = Eigen::MatrixXd::Zero(n, n);
+  Eigen::MatrixXd base_phi = phi, base_q = qd;
+  while (m > 0) {
+    if (m & 1) {
+      q_m = base_phi * q_m * base_phi.transpose() + base_q;
+      q_m = 0.5 * (q_m + q_m.transpose()).eval();
+      phi_m = base_phi * phi_m;
+    }
+    m >>= 1;
+    if (m > 0) {
+      base_q = base_phi * base_q * base_phi.transpose() + base_q;
+      base_q = 0.5 * (base_q + base_q.transpose()).eval();
+      base_phi = base_phi * base_phi;
+    }
+  }
+}
+
 }  // namespace imunoise::nav::detail

@@ -94,4 +94,9 @@ struct DiscreteModel {
 DiscreteModel discrete_model(const NavOptions& options, const std::array<GyroTerms, 3>& gyro,
                              const std::array<AccelTerms, 3>& accel);
 
+/// (phi_m, q_m) = m steps of x <- phi x + w, cov w = qd, by binary powers (log2 m products);
+/// each product is a sum of positive semi-definite terms, symmetrized.
+void compose(const Eigen::MatrixXd& phi, const Eigen::MatrixXd& qd, long m, Eigen::MatrixXd& phi_m,
+             Eigen::MatrixXd& q_m);
+
 }  // namespace imunoise::nav::detail

@@ -5,6 +5,7 @@
 
 #include "imunoise/error.hpp"
 #include "imunoise/nav/models.hpp"
+#include "imunoise/nav/outage.hpp"
 
 namespace imunoise::nav {
 
@@ -155,6 +156,12 @@ bool NavOptions::IsValid(std::string* why) const {
   if (paper_sigma_eps_rad_s && (!(*paper_sigma_eps_rad_s >= 0.0) || !std::isfinite(*paper_sigma_eps_rad_s))) {
     return fail("--sigma-eps must be >= 0");
   }
+  for (const double v : {initial_pos_m, initial_vel_m_s, initial_att_rad}) {
+    if (!(v >= 0.0) || !std::isfinite(v)) {
+      return fail("the initial errors at the outage start must be >= 0 and finite (--initial-pos-m, "
+                  "--initial-vel-m-s, --initial-att-deg)");
+    }
+  }
   if (!(earth.radius_m > 0.0) || !(earth.gravity_m_s2 > 0.0) || !(earth.rotation_rad_s >= 0.0)) {
     return fail("the Earth model needs R > 0, g > 0 and a rotation rate >= 0");
   }
@@ -252,6 +259,7 @@ NavResult navigation_error(const NavOptions& options) {
       case Model::montecarlo: r.models.push_back(montecarlo_series(options, imu, r.t_s)); break;
     }
   }
+  r.outage = outage_errors(options, r.terms, r.accel_terms);
   return r;
 }
 

@@ -159,6 +159,19 @@ nlohmann::json report_json(const NavResult& r) {
                      {"longitude_defined", r.longitude_defined},
                      {"units", {{"t", "s"}, {"lat", "deg"}, {"lon", "deg"}, {"path", "m"}, {"radial", "m"}}},
                      {"models", std::move(models)}};
+  if (!r.outage.empty()) {
+    nlohmann::json outage = nlohmann::json::array();
+    for (const OutagePoint& p : r.outage) {
+      nlohmann::json budget = nlohmann::json::object();
+      for (const auto& [term, share] : p.budget) budget[term] = share;
+      outage.push_back({{"t_s", p.t_s}, {"north_m", number(p.north_m)}, {"east_m", number(p.east_m)},
+                        {"horizontal_m", number(p.horizontal_m)}, {"velocity_m_s", number(p.velocity_m_s)},
+                        {"attitude_deg", number(p.attitude_rad * kDeg)}, {"budget", std::move(budget)}});
+    }
+    doc["outage"] = std::move(outage);
+    doc["outage_initial"] = {{"position_m", o.initial_pos_m}, {"velocity_m_s", o.initial_vel_m_s},
+                             {"attitude_deg", o.initial_att_rad * kDeg}};
+  }
   if (has_accelerometers(r)) {
     nlohmann::json accel = nlohmann::json::array();
     for (int a = 0; a < 3; ++a) accel.push_back(accel_axis_json(r.accel_terms[static_cast<std::size_t>(a)], a));
@@ -249,6 +262,16 @@ std::string report_table(const NavResult& r) {
     out += "\n";
   }
   for (const auto& n : r.notes) out += "# note: " + n + "\n";
+  if (!r.outage.empty()) {
+    out += fmt::format("# GNSS outage (from an aided start: 1-sigma position {} m, velocity {} m/s, attitude {} deg per axis)\n",
+                       num(o.initial_pos_m), num(o.initial_vel_m_s), num(o.initial_att_rad * kDeg));
+    out += "    outage [s]    north [m]     east [m]  horizontal [m]  velocity [m/s]  attitude [deg]  largest share\n";
+    for (const OutagePoint& p : r.outage) {
+      const std::string top = p.budget.empty() ? "" : fmt::format("{} {:.0f} %", p.budget.front().first, 100.0 * p.budget.front().second);
+      out += pad(num(p.t_s), 14) + pad(num(p.north_m, 5), 13) + pad(num(p.east_m, 5), 13) + pad(num(p.horizontal_m, 5), 16) +
+             pad(num(p.velocity_m_s, 5), 16) + pad(num(p.attitude_rad * kDeg, 5), 16) + "  " + top + "\n";
+    }
+  }
   constexpr std::size_t w = 22;
   out += pad("quantity", 18);
   for (const auto& s : r.models) out += pad(model_name(s.model), w);

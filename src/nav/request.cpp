@@ -80,6 +80,10 @@ NavOptions plan_navigation(const NavRequest& r) {
   NavOptions o;
   o.axes = axes_of(r, unit);
   o.accel_axes = accel_axes_of(r);
+  o.outage_s = r.outage_s;
+  o.initial_pos_m = r.initial_pos_m;
+  o.initial_vel_m_s = r.initial_vel_m_s;
+  o.initial_att_rad = r.initial_att_deg * std::numbers::pi / 180.0;
   o.duration_s = r.hours * 3600.0;
   o.step_s = std::min(r.step_s, o.duration_s);
   o.dt_s = r.dt_s;

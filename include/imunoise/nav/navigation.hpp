@@ -35,6 +35,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "imunoise/nav/earth.hpp"
@@ -119,6 +120,12 @@ struct NavOptions {
   /// (N in deg/sqrt(s) read as deg/s), east axis.
   std::optional<double> paper_sigma_eps_rad_s;
   EarthModel earth;
+  /// GNSS outage horizons (s; empty: none) and the 1-sigma errors the aiding left at the
+  /// outage start, per axis (outage.hpp).
+  std::vector<double> outage_s;
+  double initial_pos_m = 0.0;
+  double initial_vel_m_s = 0.0;
+  double initial_att_rad = 0.0;
   /// covariance: propagate every dt step between reported times instead of composing the
   /// step by doubling (same result to rounding; the baseline of bench/bench_nav.cpp).
   bool covariance_per_step = false;
@@ -160,6 +167,19 @@ struct ModelSeries {
   double paper_sigma_eps_rad_s = 0.0;  ///< paper model only: the sigma_eps used
 };
 
+/// The errors at one GNSS-outage horizon (outage.hpp).
+struct OutagePoint {
+  double t_s = 0.0;
+  double north_m = 0.0;
+  double east_m = 0.0;
+  double horizontal_m = 0.0;   ///< sqrt(north^2 + east^2)
+  double velocity_m_s = 0.0;   ///< sqrt(sigma_vN^2 + sigma_vE^2)
+  double attitude_rad = 0.0;   ///< sqrt(sigma_psiN^2 + sigma_psiE^2 + sigma_psiD^2)
+  /// Each term's share of horizontal_m^2 ("gyro N", "accel bias", "initial attitude", ...),
+  /// largest first; terms that contribute nothing are left out.
+  std::vector<std::pair<std::string, double>> budget;
+};
+
 struct NavResult {
   NavOptions options;
   std::array<GyroTerms, 3> terms;          ///< what was used per gyro axis (SI)
@@ -169,6 +189,8 @@ struct NavResult {
   bool longitude_defined = true;
   std::vector<double> t_s;                 ///< reported times
   std::vector<ModelSeries> models;         ///< in the order asked
+  /// The outage errors at options.outage_s (outage.hpp), when asked.
+  std::vector<OutagePoint> outage;
 };
 
 /// Runs every model asked. Throws InputError for invalid options (NavOptions::IsValid) or a

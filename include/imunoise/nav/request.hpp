@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "imunoise/nav/navigation.hpp"
 #include "imunoise/nav/report.hpp"
@@ -25,6 +26,10 @@ struct NavRequest {
   double bias = 0.0;              ///< constant drift on every axis (`units`), with either
   std::string units = "deg/s";    ///< unit of the coefficients, the bias and sigma_eps
   double hours = 1.0;             ///< operating time (h)
+  std::vector<double> outage_s;   ///< GNSS outage horizons (s)
+  double initial_pos_m = 0.0;     ///< 1-sigma errors at the outage start, per axis
+  double initial_vel_m_s = 0.0;
+  double initial_att_deg = 0.0;
   double latitude_deg = 58.5;
   double velocity_m_s = 0.0;
   double step_s = 60.0;           ///< reporting interval (s); clipped to the operating time

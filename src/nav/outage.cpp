@@ -1,0 +1,149 @@
+#include "imunoise/nav/outage.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+
+#include <fmt/core.h>
+
+#include "error_model.hpp"
+#include "imunoise/error.hpp"
+#include "imunoise/nav/schuler.hpp"
+
+namespace imunoise::nav {
+namespace {
+
+// The nav states' covariance at each horizon (whole dt steps, ascending), from the model's
+// prior with the initial errors on the nav states.
+std::vector<detail::NavMatrix> propagate(const NavOptions& o, const std::array<GyroTerms, 3>& gyro,
+                                         const std::array<AccelTerms, 3>& accel, const std::vector<long>& steps,
+                                         double pos_m, double vel_m_s, double att_rad) {
+  const detail::DiscreteModel d = detail::discrete_model(o, gyro, accel);
+  const double r = o.earth.radius_m;
+  const double w0 = schuler::frequency_rad_s(o.earth.gravity_m_s2, r);
+  Eigen::MatrixXd p = d.p0;
+  for (int i = 0; i < 2; ++i) {
+    p(i, i) = (pos_m / r) * (pos_m / r);
+    p(2 + i, 2 + i) = (vel_m_s / (r * w0)) * (vel_m_s / (r * w0));
+  }
+  for (int i = 4; i < 7; ++i) p(i, i) = att_rad * att_rad;
+  std::vector<detail::NavMatrix> out;
+  long k = 0;
+  Eigen::MatrixXd phi_m, q_m;
+  for (const long target : steps) {
+    if (target > k) {
+      detail::compose(d.phi, d.qd, target - k, phi_m, q_m);
+      p = phi_m * p * phi_m.transpose() + q_m;
+      p = 0.5 * (p + p.transpose()).eval();
+      k = target;
+    }
+    out.push_back(p.topLeftCorner(detail::kNavStates, detail::kNavStates));
+  }
+  return out;
+}
+
+double horizontal_variance(const detail::NavMatrix& p, double radius_m) {
+  return radius_m * radius_m * (p(0, 0) + p(1, 1));
+}
+
+// One noise term kept (all axes), the others zeroed: term j of Q N B K R GM bias.
+GyroTerms only(const GyroTerms& t, int j) {
+  GyroTerms o;
+  switch (j) {
+    case 0: o.q_rad = t.q_rad; break;
+    case 1: o.n_rad_sqrt_s = t.n_rad_sqrt_s; break;
+    case 2: o.b_rad_s = t.b_rad_s; break;
+    case 3: o.k_rad_s_sqrt_s = t.k_rad_s_sqrt_s; break;
+    case 4: o.r_rad_s2 = t.r_rad_s2; break;
+    case 5: o.gm_sigma_rad_s = t.gm_sigma_rad_s; o.gm_time_s = t.gm_time_s; break;
+    default: o.bias_rad_s = t.bias_rad_s; break;
+  }
+  return o;
+}
+
+AccelTerms only(const AccelTerms& t, int j) {
+  AccelTerms o;
+  switch (j) {
+    case 0: o.q_m_s = t.q_m_s; break;
+    case 1: o.n_m_s_sqrt_s = t.n_m_s_sqrt_s; break;
+    case 2: o.b_m_s2 = t.b_m_s2; break;
+    case 3: o.k_m_s2_sqrt_s = t.k_m_s2_sqrt_s; break;
+    case 4: o.r_m_s3 = t.r_m_s3; break;
+    case 5: o.gm_sigma_m_s2 = t.gm_sigma_m_s2; o.gm_time_s = t.gm_time_s; break;
+    default: o.bias_m_s2 = t.bias_m_s2; break;
+  }
+  return o;
+}
+
+constexpr const char* kTermNames[] = {"Q", "N", "B", "K", "R", "GM", "bias"};
+
+}  // namespace
+
+std::vector<OutagePoint> outage_errors(const NavOptions& o, const std::array<GyroTerms, 3>& gyro,
+                                       const std::array<AccelTerms, 3>& accel) {
+  std::vector<double> horizons = o.outage_s;
+  std::sort(horizons.begin(), horizons.end());
+  std::vector<long> steps;
+  for (const double t : horizons) {
+    const double n = t / o.dt_s;
+    if (!(t > 0.0) || !std::isfinite(t) || std::abs(n - std::round(n)) > 1e-6 * std::max(1.0, n)) {
+      throw InputError(fmt::format("--outage {:g} s: an outage horizon must be positive and a whole number of "
+                                   "propagation steps --dt ({:g} s)", t, o.dt_s));
+    }
+    steps.push_back(std::lround(n));
+  }
+  if (steps.empty()) return {};
+  const double r = o.earth.radius_m;
+  const double w0 = schuler::frequency_rad_s(o.earth.gravity_m_s2, r);
+  const auto all = propagate(o, gyro, accel, steps, o.initial_pos_m, o.initial_vel_m_s, o.initial_att_rad);
+
+  // The budget: one propagation per term, every other term and initial error zeroed.
+  struct Part {
+    std::string name;
+    std::vector<detail::NavMatrix> p;
+  };
+  std::vector<Part> parts;
+  const std::array<GyroTerms, 3> no_gyro{};
+  const std::array<AccelTerms, 3> no_accel{};
+  for (int j = 0; j < 7; ++j) {
+    std::array<GyroTerms, 3> g{};
+    std::array<AccelTerms, 3> a{};
+    bool gyro_term = false, accel_term = false;
+    for (std::size_t i = 0; i < 3; ++i) {
+      g[i] = only(gyro[i], j);
+      a[i] = only(accel[i], j);
+      const auto gv = detail::sensor_terms(g[i]);
+      const auto av = detail::sensor_terms(a[i]);
+      gyro_term = gyro_term || gv.q || gv.n || gv.b || gv.k || gv.r || gv.gm_sigma || gv.bias;
+      accel_term = accel_term || ((av.q || av.n || av.b || av.k || av.r || av.gm_sigma || av.bias) && i < 2);
+    }
+    if (gyro_term) parts.push_back({fmt::format("gyro {}", kTermNames[j]), propagate(o, g, no_accel, steps, 0, 0, 0)});
+    if (accel_term) parts.push_back({fmt::format("accel {}", kTermNames[j]), propagate(o, no_gyro, a, steps, 0, 0, 0)});
+  }
+  if (o.initial_pos_m > 0) parts.push_back({"initial position", propagate(o, no_gyro, no_accel, steps, o.initial_pos_m, 0, 0)});
+  if (o.initial_vel_m_s > 0) parts.push_back({"initial velocity", propagate(o, no_gyro, no_accel, steps, 0, o.initial_vel_m_s, 0)});
+  if (o.initial_att_rad > 0) parts.push_back({"initial attitude", propagate(o, no_gyro, no_accel, steps, 0, 0, o.initial_att_rad)});
+
+  std::vector<OutagePoint> out;
+  for (std::size_t i = 0; i < steps.size(); ++i) {
+    const detail::NavMatrix& p = all[i];
+    OutagePoint pt;
+    pt.t_s = horizons[i];
+    pt.north_m = r * std::sqrt(std::max(p(0, 0), 0.0));
+    pt.east_m = r * std::sqrt(std::max(p(1, 1), 0.0));
+    pt.horizontal_m = std::sqrt(std::max(horizontal_variance(p, r), 0.0));
+    pt.velocity_m_s = r * w0 * std::sqrt(std::max(p(2, 2) + p(3, 3), 0.0));
+    pt.attitude_rad = std::sqrt(std::max(p(4, 4) + p(5, 5) + p(6, 6), 0.0));
+    double total = 0.0;
+    for (const Part& part : parts) total += horizontal_variance(part.p[i], r);
+    for (const Part& part : parts) {
+      const double v = horizontal_variance(part.p[i], r);
+      if (total > 0.0 && v > 0.0) pt.budget.emplace_back(part.name, v / total);
+    }
+    std::stable_sort(pt.budget.begin(), pt.budget.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+    out.push_back(std::move(pt));
+  }
+  return out;
+}
+
+}  // namespace imunoise::nav
