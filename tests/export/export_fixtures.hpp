@@ -13,6 +13,7 @@ inline constexpr double kGyroK = 2.0e-5;   // rad/s^2/sqrt(Hz)
 inline constexpr double kGyroB = 1.0e-4;   // rad/s
 inline constexpr double kAccelN = 2.0e-3;  // m/s^2/sqrt(Hz)
 inline constexpr double kAccelK = 3.0e-4;  // m/s^3/sqrt(Hz)
+inline constexpr double kAccelB = 5.0e-4;  // m/s^2
 
 inline Coefficient known(double value) {
   Coefficient c;
@@ -38,7 +39,7 @@ inline SensorModel sensor(Quantity q, double n, double k, double b, const char* 
 inline ExportModel model(bool accel = true, double inflation = 1.0) {
   ExportModel m;
   m.gyro = sensor(Quantity::angular_rate, kGyroN, kGyroK, kGyroB, "gyro_x gyro_y gyro_z");
-  if (accel) m.accel = sensor(Quantity::acceleration, kAccelN, kAccelK, 0.0, "accel_x accel_y accel_z");
+  if (accel) m.accel = sensor(Quantity::acceleration, kAccelN, kAccelK, kAccelB, "accel_x accel_y accel_z");
   m.rate_hz = kRateHz;
   m.inflation = inflation;
   m.source = "bench.bag";
