@@ -24,6 +24,13 @@ Coefficient largest(std::span<const AxisFit> axes, Coefficient NoiseCoefficients
 
 }  // namespace
 
+AxisFit axis_fit(const Record& record, const NoiseCoefficients& coefficients) {
+  AxisFit a{record.channel.empty() ? record.name : record.channel, coefficients};
+  if (a.channel.empty()) a.channel = record.source;
+  if (!record.unit_given) a.coefficients.quantity = Quantity::dimensionless;
+  return a;
+}
+
 SensorModel combine_axes(std::span<const AxisFit> axes) {
   if (axes.empty()) throw InputError("export: no axis to build a sensor model from");
   SensorModel model;

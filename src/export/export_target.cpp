@@ -83,21 +83,50 @@ ExportSpec parse_export_spec(std::string_view text) {
   return spec;
 }
 
-std::vector<ExportFile> render_target(Target target, const ExportModel& model, const std::string& path) {
-  switch (target) {
+std::vector<std::string> target_paths(const ExportSpec& spec, const std::string& directory) {
+  const std::string path =
+      spec.path.empty()
+          ? (std::filesystem::path(directory.empty() ? "." : directory) / default_file_name(spec.target))
+                .lexically_normal()
+                .string()
+          : spec.path;
+  if (spec.target != Target::gtsam) return {path};
+  const std::string py = std::filesystem::path(path).replace_extension(".py").string();
+  if (py == path) {
+    throw InputError("--export gtsam:" + path +
+                     ": the JSON and the Python snippet would be the same file; fix: name the JSON "
+                     "file (e.g. gtsam_imu.json), the snippet goes beside it as .py");
+  }
+  return {path, py};
+}
+
+void check_targets(std::span<const ExportSpec> specs, const std::string& directory, bool force) {
+  std::set<std::string> seen;
+  for (const auto& spec : specs) {
+    for (const auto& path : target_paths(spec, directory)) {
+      if (!seen.insert(std::filesystem::path(path).lexically_normal().string()).second) {
+        throw InputError("--export: two exports name the same file '" + path +
+                         "'; fix: give each target its own FILE (--export TARGET:FILE)");
+      }
+      std::error_code ec;
+      if (!force && std::filesystem::exists(path, ec)) {
+        throw InputError(path + ": file exists; imunoise does not overwrite it -- choose another "
+                                "--export TARGET:FILE or pass --force");
+      }
+    }
+  }
+}
+
+std::vector<ExportFile> render_target(const ExportSpec& spec, const ExportModel& model,
+                                      const std::string& directory) {
+  const auto paths = target_paths(spec, directory);
+  const std::string& path = paths.front();
+  switch (spec.target) {
     case Target::kalibr: return {{path, kalibr_yaml(model)}};
     case Target::openvins: return {{path, openvins_yaml(model)}};
     case Target::vins: return {{path, vins_yaml(model)}};
     case Target::orbslam3: return {{path, orbslam3_yaml(model)}};
-    case Target::gtsam: {
-      const std::string py = std::filesystem::path(path).replace_extension(".py").string();
-      if (py == path) {
-        throw InputError("--export gtsam:" + path +
-                         ": the JSON and the Python snippet would be the same file; fix: name the JSON "
-                         "file (e.g. gtsam_imu.json), the snippet goes beside it as .py");
-      }
-      return {{path, gtsam_json(model).dump(1) + "\n"}, {py, gtsam_python(model)}};
-    }
+    case Target::gtsam: return {{path, gtsam_json(model).dump(1) + "\n"}, {paths[1], gtsam_python(model)}};
     case Target::px4: return {{path, px4_params(model)}};
     case Target::matlab: return {{path, matlab_script(model)}};
     case Target::ros: return {{path, ros_covariance_yaml(model)}};
@@ -108,27 +137,10 @@ std::vector<ExportFile> render_target(Target target, const ExportModel& model, c
 std::vector<std::string> write_targets(std::span<const ExportSpec> specs, const ExportModel& model,
                                        const std::string& directory, bool force) {
   // Everything that can fail is checked before anything is written.
+  check_targets(specs, directory, force);
   std::vector<ExportFile> files;
   for (const auto& s : specs) {
-    const std::string path =
-        s.path.empty() ? (std::filesystem::path(directory.empty() ? "." : directory) / default_file_name(s.target))
-                             .lexically_normal()
-                             .string()
-                       : s.path;
-    for (auto& f : render_target(s.target, model, path)) files.push_back(std::move(f));
-  }
-  std::set<std::string> seen;
-  for (const auto& f : files) {
-    const std::string key = std::filesystem::path(f.path).lexically_normal().string();
-    if (!seen.insert(key).second) {
-      throw InputError("--export: two exports name the same file '" + f.path +
-                       "'; fix: give each target its own FILE (--export TARGET:FILE)");
-    }
-    std::error_code ec;
-    if (!force && std::filesystem::exists(f.path, ec)) {
-      throw InputError(f.path + ": file exists; imunoise does not overwrite it -- choose another "
-                                "--export TARGET:FILE or pass --force");
-    }
+    for (auto& f : render_target(s, model, directory)) files.push_back(std::move(f));
   }
   std::vector<std::string> written;
   for (const auto& f : files) {

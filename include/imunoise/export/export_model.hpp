@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "imunoise/load/record.hpp"
 #include "imunoise/noise_coefficients.hpp"
 
 namespace imunoise::exports {
@@ -37,6 +38,11 @@ struct ExportModel {
   double px4_ekf_rate_hz = 100.0;
 };
 
+/// The fit of one record as an axis: its channel (container channel, else the record's name)
+/// and coefficients; a record without a unit has quantity dimensionless (make_export_model
+/// then refuses it: a filter file needs SI values).
+AxisFit axis_fit(const Record& record, const NoiseCoefficients& coefficients);
+
 /// The triad model from per-axis fits, all of one quantity: per term the identified axis with
 /// the largest value, its interval with it; a term identified on no axis stays unidentified
 /// (with the first axis's note). Throws InputError for no axes or mixed quantities.
@@ -44,7 +50,8 @@ SensorModel combine_axes(std::span<const AxisFit> axes);
 
 /// An ExportModel from fits of any channels: gyro channels (angular_rate) form the gyro triad,
 /// accelerometer channels (acceleration) the accelerometer one; other quantities are ignored.
-/// Throws InputError when there is neither, or for a non-positive rate or inflation.
+/// Throws InputError when there is neither (naming the unit fix), or for a non-positive rate
+/// or inflation.
 ExportModel make_export_model(std::span<const AxisFit> fits, double rate_hz, double inflation,
                               std::string source);
 

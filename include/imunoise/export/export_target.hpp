@@ -43,9 +43,18 @@ struct ExportFile {
   std::string text;
 };
 
-/// The files of one target (gtsam: the JSON at `path` and the Python snippet beside it, with
-/// the extension .py). Throws InputError when the model lacks what the target needs.
-std::vector<ExportFile> render_target(Target target, const ExportModel& model, const std::string& path);
+/// The files of one request, at target_paths(spec, directory). Throws InputError when the
+/// model lacks what the target needs.
+std::vector<ExportFile> render_target(const ExportSpec& spec, const ExportModel& model,
+                                      const std::string& directory);
+
+/// The file(s) a request writes: its path, or default_file_name in `directory` ("" = the
+/// current directory); gtsam adds the Python snippet beside the JSON (extension .py).
+std::vector<std::string> target_paths(const ExportSpec& spec, const std::string& directory);
+
+/// InputError when two requests name the same file, or (without `force`) a file exists: for
+/// a command to call before its long work, so a refusal comes first.
+void check_targets(std::span<const ExportSpec> specs, const std::string& directory, bool force);
 
 /// Renders every request (paths resolved in `directory` when not given; a given relative
 /// path is used as given), checks that no two name the same file and that none exists (unless
