@@ -108,15 +108,20 @@ AuditItem check(const ParamValue& p, const ExportModel& m) {
     item.message = "consistent: " + measured;
     return item;
   }
+  // Every slip that explains the value within the interval (two can: deg^2 and sigma for
+  // sigma^2 may coincide for one number); all are named.
   for (const auto& s : slips(p.spec.form, f, fe)) {
     const double lo = s.apply(item.low);
     const double hi = s.apply(item.high);
     if (v >= std::min(lo, hi) && v <= std::max(lo, hi)) {
-      item.verdict = Verdict::mistake;
-      item.mistake = s.label;
-      item.message = fmt::format("WRONG by {}; {}", s.label, measured);
-      return item;
+      if (!item.mistake.empty()) item.mistake += ", or ";
+      item.mistake += s.label;
     }
+  }
+  if (!item.mistake.empty()) {
+    item.verdict = Verdict::mistake;
+    item.message = fmt::format("WRONG by {}; {}", item.mistake, measured);
+    return item;
   }
   if (v > item.high) {
     item.verdict = Verdict::inflated;
