@@ -112,3 +112,48 @@ TEST(CliExports, AnalyzeOfSixChannelsGivesGyroAndAccelerometer) {
 
 }  // namespace
 }  // namespace imunoise
+
+namespace imunoise {
+namespace {
+
+using test::run_cli;
+using test::slurp;
+using test::TempDir;
+
+TEST(CliCheck, ExportedFileIsConsistentAndAMistakeExitsOne) {
+  TempDir dir;
+  const auto g = simulate(dir, "g.txt", "deg/s", "0.01", "1", "3");
+  const std::string vins = dir.file("vins.yaml");
+  ASSERT_EQ(run_cli({"fit", g, "--rate", "100", "--units", "deg/s", "--export", "vins:" + vins}).exit_code, 0);
+  const auto good = run_cli({"check", vins, g, "--rate", "100", "--units", "deg/s", "--format", "json"});
+  ASSERT_EQ(good.exit_code, 0) << good.err << good.out;
+  const auto j = nlohmann::json::parse(good.out);
+  EXPECT_EQ(j["target"], "vins");
+  EXPECT_TRUE(j["ok"].get<bool>());
+  EXPECT_EQ(j["values"][0]["key"], "gyr_n");
+  EXPECT_EQ(j["values"][0]["verdict"], "consistent");
+  EXPECT_EQ(j["values"][1]["key"], "gyr_w");
+  // acc_n / acc_w are placeholders in the file (the record has no accelerometer): not checked.
+  ASSERT_EQ(j["values"].size(), 2u);
+  EXPECT_EQ(j["notes"][0], "acc_n is not in the file (not checked)");
+  // The same record's Kalibr density written into the VINS file: the classic mistake.
+  const std::string kalibr = dir.file("k.yaml");
+  ASSERT_EQ(run_cli({"fit", g, "--rate", "100", "--units", "deg/s", "--export", "kalibr:" + kalibr}).exit_code, 0);
+  const std::string k = slurp(kalibr);
+  const auto at = k.find("\ngyroscope_noise_density: ");
+  ASSERT_NE(at, std::string::npos);
+  const std::string density = k.substr(at + 26, k.find(' ', at + 26) - at - 26);
+  const std::string wrong = dir.write("wrong.yaml", "%YAML:1.0\ngyr_n: " + density + "\n");
+  const auto bad = run_cli({"check", wrong, g, "--rate", "100", "--units", "deg/s"});
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.out.find("WRONG by / sqrt(rate)"), std::string::npos) << bad.out;
+  const auto unknown = run_cli({"check", wrong, g, "--rate", "100", "--units", "deg/s", "--target", "msckf"});
+  EXPECT_EQ(unknown.exit_code, 1);
+  EXPECT_NE(unknown.err.find("unknown target 'msckf'; targets: kalibr"), std::string::npos) << unknown.err;
+  const auto unrecognised = run_cli({"check", g, g, "--rate", "100", "--units", "deg/s"});
+  EXPECT_EQ(unrecognised.exit_code, 1);
+  EXPECT_NE(unrecognised.err.find("give --target T"), std::string::npos) << unrecognised.err;
+}
+
+}  // namespace
+}  // namespace imunoise
