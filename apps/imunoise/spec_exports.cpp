@@ -19,6 +19,10 @@ void add_filter_export_options(CLI::App& app, FilterExportOptions& options) {
       ->check(CLI::PositiveNumber);
   app.add_option("--kalibr-topic", options.kalibr_topic, "rostopic written to the Kalibr and OpenVINS files")
       ->capture_default_str();
+  app.add_option("--px4-ekf-rate", options.px4_ekf_rate_hz,
+                 "PX4 EKF prediction rate (Hz) the px4 export is discretised at: 1e6 / EKF2_PREDICT_US")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
 }
 
 namespace {
@@ -42,6 +46,7 @@ nlohmann::json run_filter_exports(const FilterExportOptions& options, std::span<
   if (specs.empty()) return written;
   auto model = exports::make_export_model(fits, rate_hz, options.inflation, source);
   model.topic = options.kalibr_topic;
+  model.px4_ekf_rate_hz = options.px4_ekf_rate_hz;
   exports::write_targets(specs, model, directory, options.force);
   for (const auto& spec : specs) {
     for (const auto& path : exports::target_paths(spec, directory)) {

@@ -26,10 +26,11 @@ struct FilterExportOptions {
   std::vector<std::string> exports;    ///< --export TARGET[:FILE]
   double inflation = 1.0;              ///< --inflate F: factor on every noise value (> 0)
   std::string kalibr_topic = "/imu0";  ///< --kalibr-topic TOPIC: rostopic (Kalibr, OpenVINS)
+  double px4_ekf_rate_hz = 100.0;      ///< --px4-ekf-rate HZ: 1e6 / EKF2_PREDICT_US
   bool force = false;                  ///< the command's own --force, copied in
 };
 
-/// Registers --export, --inflate/--inflation and --kalibr-topic on `app`.
+/// Registers --export, --inflate/--inflation, --kalibr-topic and --px4-ekf-rate on `app`.
 void add_filter_export_options(CLI::App& app, FilterExportOptions& options);
 
 /// Parses the --export requests and refuses (InputError) an unknown target, two requests of
