@@ -155,6 +155,20 @@ TEST(ExportText, PythonSnippetBuildsTheParams) {
   const auto calls = nlohmann::json::parse(in);
   EXPECT_EQ(calls["setGyroscopeCovariance"].get<double>(), kGyroN * kGyroN);
   EXPECT_EQ(calls["setBiasAccCovariance"].get<double>(), kAccelK * kAccelK);
+  // Kalibr reads imu.yaml with PyYAML (YAML 1.1): every value must come back a float, not a
+  // string ("3e-05") or an int ("200"); ROS tools read the covariance file the same way.
+  std::ofstream(dir / "kalibr.yaml") << kalibr_yaml(model());
+  std::ofstream(dir / "ros.yaml") << ros_covariance_yaml(model());
+  std::ofstream(dir / "yaml_types.py")
+      << "import yaml\n"
+         "k = yaml.safe_load(open('kalibr.yaml'))\n"
+         "for key in ('gyroscope_noise_density', 'gyroscope_random_walk', 'accelerometer_noise_density',\n"
+         "            'accelerometer_random_walk', 'update_rate'):\n"
+         "    assert type(k[key]) is float, (key, k[key])\n"
+         "assert k['gyroscope_noise_density'] == 0.0002 and k['update_rate'] == 200.0\n"
+         "r = yaml.safe_load(open('ros.yaml'))\n"
+         "assert all(type(v) is float for v in r['angular_velocity_covariance'])\n";
+  EXPECT_EQ(std::system(("cd " + dir.string() + " && /usr/bin/python3 yaml_types.py").c_str()), 0);
   // Without an accelerometer the snippet stops instead of running with made-up values.
   std::ofstream(dir / "snippet.py") << gtsam_python(model(false));
   EXPECT_NE(std::system((cmd + " 2>/dev/null").c_str()), 0);
