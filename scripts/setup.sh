@@ -13,7 +13,7 @@ packages=(
   libfast-float-dev libcli11-dev libfmt-dev nlohmann-json3-dev
   libboost-dev libeigen3-dev libyaml-cpp-dev
   clang libclang-rt-14-dev
-  python3-dev python3-numpy python3-pytest pybind11-dev
+  python3-dev python3-numpy python3-pytest pybind11-dev python3-setuptools python3-venv python3-wheel python3-pip
   gnuplot-nox chromium fonts-dejavu-core
   libhdf5-dev libbz2-dev liblz4-dev libzstd-dev python3-h5py python3-rosbag python3-sensor-msgs
   libopenmpi-dev openmpi-bin

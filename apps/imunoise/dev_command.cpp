@@ -17,7 +17,8 @@
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
 #include "imunoise/total.hpp"
-#include "distributed_record.hpp"
+#include "imunoise/parallel/distributed_deviations.hpp"
+#include "mpi_session.hpp"
 #include "imunoise/study/curves.hpp"
 #include "imunoise/study/fit_stage.hpp"
 #include "input_options.hpp"
@@ -55,12 +56,13 @@ std::string render(const DevOptionsCli& options, const study::Record& record,
 }
 
 // --mpi: the record is read in slices by the ranks and the mergeable sums are merged in a tree
-// (distributed_record.hpp); rank 0 prints. The noise type behind each interval is identified on
-// rank 0's own slice (the whole record never gathers in one place); the EDF counts every sample.
+// (imunoise/parallel/distributed_deviations.hpp); rank 0 prints. The noise type behind each
+// interval is identified on rank 0's own slice (the whole record never gathers in one place);
+// the EDF counts every sample.
 void run_dev_mpi(const DevOptionsCli& options, const std::vector<Estimator>& estimators,
                  const TauGrid& grid, std::optional<int> forced_alpha) {
   if (options.bias_correct) throw InputError("--bias-correct does not apply to --mpi's estimators");
-  const DistributedCurves dist = distributed_deviations(options.input, estimators, grid);
+  const auto dist = parallel::distributed_deviations(mpi::start(), options.input, estimators, grid);
   if (!dist.root) return;
   const std::string note =
       options.no_ci ? "--mpi: sums merged over the ranks; no confidence intervals (--no-ci)"

@@ -21,7 +21,8 @@
 #include "imunoise/preprocess/temperature.hpp"
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
-#include "distributed_record.hpp"
+#include "imunoise/parallel/distributed_deviations.hpp"
+#include "mpi_session.hpp"
 #include "imunoise/study/fit_stage.hpp"
 #include "fit_options.hpp"
 #include "input_options.hpp"
@@ -41,11 +42,13 @@ struct FitCommandOptions {
   bool mpi = false;
 };
 
-// --mpi: each rank reads its slice; the oadev sums are merged in a tree (distributed_record.hpp)
-// and rank 0 fits the merged curve. Empty on the other ranks.
+// --mpi: each rank reads its slice; the oadev sums are merged in a tree
+// (imunoise/parallel/distributed_deviations.hpp) and rank 0 fits the merged curve. Empty on the
+// other ranks.
 std::optional<std::pair<Record, fit::FitResult>> fit_distributed(const FitCommandOptions& options,
                                                                  const fit::FitOptions& fo) {
-  auto dist = distributed_deviations(options.input, {Estimator::oadev}, parse_tau_grid(options.taus));
+  auto dist = parallel::distributed_deviations(mpi::start(), options.input, {Estimator::oadev},
+                                              parse_tau_grid(options.taus));
   if (!dist.root) return std::nullopt;
   bool constant = true;
   for (const auto& p : dist.curves[0]) constant = constant && !(p.n > 0 && p.dev > 0.0);

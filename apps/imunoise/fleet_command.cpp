@@ -9,7 +9,6 @@
 // first failure. A rank that dies ends the whole run (mpirun aborts the job and names the rank).
 #include <csignal>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -31,6 +30,7 @@
 #include "mpi_session.hpp"
 #include "output.hpp"
 #include "imunoise/load/load.hpp"
+#include "imunoise/parallel/task_farm.hpp"
 #include "imunoise/study/sensor.hpp"
 #include "imunoise/tau_grid.hpp"
 
@@ -53,9 +53,6 @@ struct FleetOptionsCli {
   bool quiet = false;
 };
 
-constexpr int kTaskTag = 31;
-constexpr int kResultTag = 32;
-
 study::SensorOptions analysis_options(const FleetOptionsCli& options) {
   study::SensorOptions a;
   a.fit = to_fit_options(options.fit);
@@ -67,29 +64,13 @@ study::SensorOptions analysis_options(const FleetOptionsCli& options) {
   return a;
 }
 
-// The per-file step: load the record and study it (imunoise/study/sensor.hpp).
+// The per-file step (imunoise/fleet/fleet.hpp): load the record and study it.
 fleet::SensorOutcome analyze_file(const FleetOptionsCli& options, const study::SensorOptions& analysis,
                                   std::size_t index) {
-  fleet::SensorOutcome outcome;
-  outcome.file = options.inputs.files[index];
   load::LoadOptions input = options.inputs.load;
-  input.file = outcome.file;
+  input.file = options.inputs.files[index];
   input.column = options.inputs.columns;
-  try {
-    const Record record = load::load(input);
-    outcome.fit = study::sensor_json(record, analysis, study::study_sensor(record, analysis));
-  } catch (const InputError& e) {
-    outcome.error = e.what();
-  } catch (const std::bad_alloc&) {
-    outcome.error = "out of memory";
-  } catch (const std::exception& e) {
-    outcome.error = std::string("internal error: ") + e.what();
-  }
-  if (!outcome.error.empty()) {
-    outcome.fit = nullptr;
-    if (outcome.error.rfind(outcome.file, 0) != 0) outcome.error = outcome.file + ": " + outcome.error;
-  }
-  return outcome;
+  return fleet::study_file(input, analysis);
 }
 
 void report_failure(const fleet::SensorOutcome& outcome, bool strict) {
@@ -113,62 +94,33 @@ bool must_die(const std::string& file) {
   return file.size() >= s.size() && file.compare(file.size() - s.size(), s.size(), s) == 0;
 }
 
-void worker(const FleetOptionsCli& options, const study::SensorOptions& analysis) {
-  for (;;) {
-    const auto task = mpi::receive_bytes(0, kTaskTag);
-    if (task.empty()) return;
-    std::uint64_t index = 0;
-    std::memcpy(&index, task.data(), 8);
-    if (must_die(options.inputs.files.at(index))) std::raise(SIGKILL);
-    mpi::send_bytes(0, kResultTag, fleet::encode_outcome(index, analyze_file(options, analysis, index)));
-  }
-}
-
-void send_task(int rank, std::size_t index) {
-  std::vector<std::uint8_t> bytes(8);
-  const auto i = static_cast<std::uint64_t>(index);
-  std::memcpy(bytes.data(), &i, 8);
-  mpi::send_bytes(rank, kTaskTag, bytes);
-}
-
-// Rank 0 of a parallel run: dynamic hand-out, results in the files' order.
-std::vector<fleet::SensorOutcome> dispatch(const FleetOptionsCli& options, int ranks) {
+// Rank 0 of a parallel run: the files handed out as ranks become free, results in the files'
+// order (imunoise/parallel/task_farm.hpp).
+std::vector<fleet::SensorOutcome> dispatch(const FleetOptionsCli& options, const study::SensorOptions& analysis,
+                                           parallel::Ranks& ranks) {
   std::vector<fleet::SensorOutcome> results(options.inputs.files.size());
-  std::size_t next = 0;
-  int busy = 0;
-  for (int r = 1; r < ranks; ++r) {
-    if (next < options.inputs.files.size()) {
-      send_task(r, next++);
-      ++busy;
-    } else {
-      mpi::send_bytes(r, kTaskTag, {});
-    }
-  }
   const fleet::SensorOutcome* first_failure = nullptr;
-  while (busy > 0) {
-    int from = 0;
-    const auto bytes = mpi::receive_bytes(-1 /* any */, kResultTag, &from);
-    --busy;
+  const auto work = [&](std::size_t index) {
+    if (must_die(options.inputs.files.at(index))) std::raise(SIGKILL);
+    return fleet::encode_outcome(index, analyze_file(options, analysis, index));
+  };
+  const auto on_result = [&](std::size_t, const parallel::Bytes& bytes) {
     fleet::SensorOutcome outcome;
     const std::size_t index = fleet::decode_outcome(bytes, options.inputs.files, outcome);
     results[index] = std::move(outcome);
-    if (results[index].fit.is_null()) {
+    if (!results[index].ok()) {
       report_failure(results[index], options.strict);
       if (options.strict && first_failure == nullptr) first_failure = &results[index];
     }
-    if (next < options.inputs.files.size() && first_failure == nullptr) {
-      send_task(from, next++);
-      ++busy;
-    } else {
-      mpi::send_bytes(from, kTaskTag, {});
-    }
-  }
+    return first_failure == nullptr;
+  };
+  parallel::run_task_farm(ranks, results.size(), work, on_result);
   if (first_failure != nullptr) fail_strict(*first_failure);
   return results;
 }
 
 void run_fleet(const FleetOptionsCli& options) {
-  const mpi::World world = mpi::start();
+  parallel::Ranks& ranks = mpi::start();
   const study::SensorOptions analysis = analysis_options(options);
   if (options.inputs.columns.find(',') != std::string::npos) {
     throw InputError("--column " + options.inputs.columns + ": the fleet studies one channel per file "
@@ -180,38 +132,36 @@ void run_fleet(const FleetOptionsCli& options) {
   const auto csv_path = (dir / "fleet.csv").string();
   // Rank 0 checks the outputs before any work; every rank learns the verdict together.
   std::string error;
-  if (world.rank == 0) {
+  if (ranks.rank() == 0) {
     try {
       fleet::prepare_output_dir(options.dir, options.force);
     } catch (const InputError& e) {
       error = e.what();
     }
   }
-  if (!mpi::all_ok(error.empty())) {
-    if (world.rank == 0) throw InputError(error);
-    return;
-  }
-  if (world.rank != 0) {
-    worker(options, analysis);
+  if (!ranks.all_ok(error.empty())) {
+    if (ranks.rank() == 0) throw InputError(error);
     return;
   }
   std::vector<fleet::SensorOutcome> results;
-  if (world.size == 1) {
+  if (ranks.size() == 1) {
     for (std::size_t i = 0; i < options.inputs.files.size(); ++i) {
       results.push_back(analyze_file(options, analysis, i));
-      if (results.back().fit.is_null()) {
+      if (!results.back().ok()) {
         if (options.strict) fail_strict(results.back());
         report_failure(results.back(), false);
       }
     }
   } else {
-    results = dispatch(options, world.size);
+    results = dispatch(options, analysis, ranks);
+    if (ranks.rank() != 0) return;
   }
   fleet::FleetRules rules;
   rules.outlier_z = options.outlier_z;
-  const nlohmann::json doc = fleet::fleet_document(results, rules);
+  const fleet::FleetSummary summary = fleet::summarize_fleet(results, rules);
+  const nlohmann::json doc = fleet::fleet_document(results, summary);
   write_output({json_path, options.force}, doc.dump(1) + "\n");
-  write_output({csv_path, options.force}, fleet::fleet_csv(doc));
+  write_output({csv_path, options.force}, fleet::fleet_csv(results, summary));
   study::WriteOptions report_options;
   report_options.force = options.force;
   const auto report = fleet::write_fleet_report(doc, options.dir, report_options, options.title);

@@ -16,6 +16,8 @@
 #include "imunoise/study/fit_stage.hpp"
 #include "imunoise/units.hpp"
 
+#include "array_view.hpp"
+
 namespace py = pybind11;
 
 namespace imunoise::python {
@@ -94,9 +96,7 @@ PreparedRecord prepare_record(std::span<const double> samples, const py::object&
   } else if (args.gaps == "split") {
     throw InputError("gaps='split' needs the timestamps: pass time=recording.time_s (seconds, one per sample)");
   }
-  if (!(rate > 0.0) || !std::isfinite(rate)) {
-    throw InputError("rate must be positive and finite (Hz), or given by time=; got " + fmt::format("{:g}", rate));
-  }
+  checked_rate_hz(rate, "time=");
   r.rate_hz = rate;
   r.unit_given = !units.empty();
   r.rate_unit = rate_unit_of(units);

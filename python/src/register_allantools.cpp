@@ -37,9 +37,7 @@ namespace {
 py::tuple deviation_at_factors(const std::string& name, const Array& phase_array, double rate,
                                const std::vector<std::size_t>& factors, unsigned threads) {
   const Estimator estimator = parse_estimator(name);
-  if (!(rate > 0) || !std::isfinite(rate)) {
-    throw InputError("rate must be positive and finite (Hz), got " + fmt::format("{:g}", rate));
-  }
+  checked_rate_hz(rate);
   const auto phase = view(phase_array);
   std::vector<DevPoint> points;
   {
@@ -67,9 +65,7 @@ py::tuple deviation_at_factors(const std::string& name, const Array& phase_array
 // AllanTools' frequency-to-phase integration: x[0] = 0, x[k] = sum_{i<k} (y[i] - mean) / rate,
 // compensated (phase.hpp).
 py::array_t<double> integrate_frequency(const Array& freq, double rate) {
-  if (!(rate > 0) || !std::isfinite(rate)) {
-    throw InputError("rate must be positive and finite (Hz), got " + fmt::format("{:g}", rate));
-  }
+  checked_rate_hz(rate);
   const auto y = view(freq);
   std::vector<double> x;
   {

@@ -30,6 +30,8 @@
 #include "imunoise/load/load.hpp"
 #include "to_python.hpp"
 
+#include "array_view.hpp"
+
 namespace py = pybind11;
 
 namespace imunoise::python {
@@ -64,9 +66,7 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
                      bool keep_short_taus, bool exact_model, bool auto_terms,
                      const PreprocessArgs& preprocessing) {
   if (data.ndim() != 1) throw InputError("data must be a 1-D array, got " + std::to_string(data.ndim()) + "-D");
-  if (!(rate > 0) || !std::isfinite(rate)) {
-    throw InputError("rate must be positive and finite (Hz), got " + fmt::format("{:g}", rate));
-  }
+  checked_rate_hz(rate);
   const std::span<const double> samples(data.data(), static_cast<std::size_t>(data.shape(0)));
   fit::FitOptions options;
   options.method = fit::parse_method(method);

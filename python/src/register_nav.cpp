@@ -24,8 +24,7 @@ namespace imunoise::python {
 namespace {
 
 nav::GyroAxisNoise from_fit_object(const py::handle& fit, const std::string& name) {
-  const std::string text = py::module_::import("json").attr("dumps")(fit).cast<std::string>();
-  return nav::axis_from_fit_json(nlohmann::json::parse(text), name);
+  return nav::axis_from_fit_json(from_python(fit, name), name);
 }
 
 py::object nav_call(double N, double B, double K, double Q, double R, double bias, double gm_sigma, double gm_tau,
@@ -34,6 +33,8 @@ py::object nav_call(double N, double B, double K, double Q, double R, double bia
                     unsigned threads, std::optional<double> sigma_eps, bool earth_rate, bool signed_constants) {
   nav::NavRequest r;
   r.names = {"", '_'};
+  r.fit_option = "fit=";
+  r.per_axis_fit_option = "fit=[x, y, z]";
   r.coefficients = {Q, N, B, K, R, gm_sigma, gm_tau};
   r.coefficients_given = N != 0 || B != 0 || K != 0 || Q != 0 || R != 0 || gm_sigma != 0;
   if (py::isinstance<py::dict>(fit)) {

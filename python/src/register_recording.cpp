@@ -1,18 +1,15 @@
 // imunoise.read: a recording (ROS 1 bag, ROS 2 MCAP, HDF5, EuRoC CSV, text or raw binary) as a
 // Python object with its channel names, units, NumPy arrays, timestamps, rate and source; and
 // imunoise.dev: deviation curves of rate samples with the preprocessing options, as the
-// document of `imunoise dev --format json`. Only parses and calls the library (imunoise/io,
+// document of `imunoise dev --format json`. Only parses and calls the library (imunoise/load,
 // imunoise/preprocess, imunoise/study).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <cmath>
-#include <filesystem>
-#include <limits>
 #include <optional>
 #include <string>
-#include <variant>
 #include <vector>
 
 #include <fmt/core.h>
@@ -22,10 +19,8 @@
 #include "imunoise/estimator.hpp"
 #include "imunoise/confidence/edf.hpp"
 #include "imunoise/confidence/interval.hpp"
-#include "imunoise/io/binary_reader.hpp"
 #include "imunoise/io/recording.hpp"
-#include "imunoise/io/text_reader.hpp"
-#include "imunoise/io/timestamps.hpp"
+#include "imunoise/load/read_channels.hpp"
 #include "imunoise/study/curves.hpp"
 #include "imunoise/tau_grid.hpp"
 #include "preprocessing.hpp"
@@ -39,12 +34,7 @@ namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-// A recording with its rate (from the timestamps' median interval, or given) and timing.
-struct PyRecording {
-  io::Recording recording;
-  double rate_hz = std::numeric_limits<double>::quiet_NaN();
-  std::optional<io::TimingReport> timing;
-};
+using PyRecording = load::FileRecording;
 
 py::array_t<double> to_numpy(const std::vector<double>& v) {
   py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
@@ -67,69 +57,20 @@ PyRecording read(const std::string& path, const std::optional<std::string>& topi
                  const std::optional<std::string>& dataset, const std::optional<std::string>& time_dataset,
                  const py::object& column, const py::object& time_column, const std::optional<std::string>& binary,
                  std::size_t channels, const std::optional<double>& rate) {
-  const std::vector<std::string> wanted = names_of(column);
+  load::ChannelsOptions options;
+  options.file = path;
+  options.topic = topic.value_or("");
+  options.dataset = dataset.value_or("");
+  options.time_dataset = time_dataset.value_or("");
+  options.columns = names_of(column);
   const std::vector<std::string> time_names = names_of(time_column);
   if (time_names.size() > 1) throw InputError("time_column names one column");
-  PyRecording out;
-  {
-    py::gil_scoped_release release;
-    if (!std::filesystem::exists(path)) throw InputError(path + ": no such file; check the path");
-    const bool is_binary = binary.has_value() || io::binary_format_from_extension(path).has_value();
-    if (topic || dataset || time_dataset || (!is_binary && io::detect_container(path).has_value())) {
-      if (binary) throw InputError(path + ": binary= is for raw sample files; drop it");
-      if (!time_names.empty()) {
-        throw InputError(path + ": time_column= is for text files; this file's timestamps are read from the "
-                         "container (HDF5: time_dataset=)");
-      }
-      io::RecordingOptions options;
-      options.topic = topic.value_or("");
-      options.dataset = dataset.value_or("");
-      options.time_dataset = time_dataset.value_or("");
-      out.recording = io::read_recording(path, options);
-      if (!wanted.empty()) {
-        std::vector<io::Channel> kept;
-        for (const auto& name : wanted) kept.push_back(out.recording.channel(name));
-        out.recording.channels = std::move(kept);
-      }
-    } else if (is_binary) {
-      io::BinaryReadOptions options;
-      options.format = binary ? io::parse_binary_format(*binary) : *io::binary_format_from_extension(path);
-      options.channels = channels;
-      if (!time_names.empty()) throw InputError(path + ": raw binary files hold no timestamps; pass rate=");
-      out.recording.source = path;
-      out.recording.format = io::RecordingFormat::binary;
-      std::vector<std::size_t> selected;
-      for (const auto& name : wanted) {
-        const auto selector = io::parse_column_selector(name);
-        if (!std::holds_alternative<std::size_t>(selector)) {
-          throw InputError(path + ": column= must be channel indices (0-based) for raw binary files, got '" + name + "'");
-        }
-        selected.push_back(std::get<std::size_t>(selector));
-      }
-      if (selected.empty()) {
-        for (std::size_t c = 0; c < channels; ++c) selected.push_back(c);
-      }
-      for (const std::size_t c : selected) {
-        options.column = c;
-        out.recording.channels.push_back({"channel " + std::to_string(c), std::nullopt, io::read_binary_file(path, options)});
-      }
-    } else {
-      out.recording = io::read_text_recording(path, wanted, time_names.empty() ? std::string() : time_names[0]);
-    }
-  }
-  if (!out.recording.time_s.empty()) {
-    out.timing = io::analyze_timing(out.recording.time_s, out.recording.source);
-    io::require_ordered(*out.timing, out.recording.source);
-    out.rate_hz = out.timing->rate_hz;
-    if (rate && std::abs(out.rate_hz / *rate - 1.0) > 0.01) {
-      throw InputError(path + ": rate " + fmt::format("{:g}", *rate) + " Hz disagrees with the file's timestamps (" +
-                       fmt::format("{:.6g}", out.rate_hz) + " Hz from the median interval); drop rate");
-    }
-  } else if (rate) {
-    if (!(*rate > 0.0) || !std::isfinite(*rate)) throw InputError("rate must be positive and finite (Hz)");
-    out.rate_hz = *rate;
-  }
-  return out;
+  if (!time_names.empty()) options.time_column = time_names[0];
+  options.binary = binary.value_or("");
+  options.channels = channels;
+  options.rate_hz = rate;
+  py::gil_scoped_release release;
+  return load::read_channels(options);
 }
 
 const io::Channel& channel_of(const PyRecording& r, const py::object& key) {

@@ -22,6 +22,8 @@
 #include "imunoise/units.hpp"
 #include "to_python.hpp"
 
+#include "array_view.hpp"
+
 namespace py = pybind11;
 
 namespace imunoise::python {
@@ -39,9 +41,8 @@ std::vector<redundant::SensorModel> models_of(const py::object& fits, Unit& unit
     ++i;
     Unit u;
     if (py::isinstance<py::dict>(item)) {
-      const std::string text = py::module_::import("json").attr("dumps")(item).cast<std::string>();
-      models.push_back(redundant::sensor_model_from_fit_json(nlohmann::json::parse(text),
-                                                             "fits[" + std::to_string(i - 1) + "]", u));
+      const std::string where = "fits[" + std::to_string(i - 1) + "]";
+      models.push_back(redundant::sensor_model_from_fit_json(from_python(item, where), where, u));
     } else {
       const std::filesystem::path path(py::str(item).cast<std::string>());
       std::vector<std::filesystem::path> one{path};
@@ -103,7 +104,7 @@ py::dict fuse(const py::object& records, const std::string& geometry, double rat
               const py::object& fits, bool detect, double window_s, double reference_s,
               double false_alarm_per_hour, double detection_probability, unsigned threads) {
   const auto g = redundant::make_geometry(geometry);
-  if (!(rate > 0) || !std::isfinite(rate)) throw InputError("rate must be positive and finite (Hz)");
+  checked_rate_hz(rate);
   // records: a 2-D array (sensors x samples) or a sequence of 1-D arrays.
   std::vector<Array> arrays;
   const Array as2d = py::isinstance<py::array>(records) ? Array::ensure(records) : Array();

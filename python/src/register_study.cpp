@@ -33,6 +33,8 @@
 #include "imunoise/load/load.hpp"
 #include "to_python.hpp"
 
+#include "array_view.hpp"
+
 namespace py = pybind11;
 
 namespace imunoise::python {
@@ -118,9 +120,7 @@ py::object analyze(const py::object& channels, double rate, const py::object& un
                    const std::optional<std::string>& geometry,
                    double nav_hours, const py::object& estimators, bool keep_going,
                    const py::object& output_dir, bool force) {
-  if (!(rate > 0.0) || !std::isfinite(rate)) {
-    throw InputError("rate must be positive and finite (Hz), got " + fmt::format("{:g}", rate));
-  }
+  checked_rate_hz(rate);
   if (!(nav_hours > 0.0) || !std::isfinite(nav_hours)) {
     throw InputError("nav_hours must be positive and finite (h)");
   }

@@ -1090,6 +1090,16 @@ void LineMap::add(std::size_t sample, std::size_t line) {
   runs_.push_back({sample, line});
 }
 
+std::vector<std::string> split_fields(std::string_view line) {
+  line = trim(line);
+  std::vector<std::string> fields;
+  if (line.empty()) return fields;
+  FieldCursor cursor(line, detect_separator(line));
+  std::string_view field;
+  while (cursor.next(field)) fields.emplace_back(field);
+  return fields;
+}
+
 std::size_t LineMap::line_of(std::size_t sample) const {
   if (runs_.empty()) return 0;
   auto it = std::upper_bound(runs_.begin(), runs_.end(), sample,

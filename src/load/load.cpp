@@ -396,34 +396,7 @@ std::vector<std::string> first_line_fields(const std::string& file) {
   if (line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);
   const auto hash = line.find('#');
   if (hash != std::string::npos) line.erase(hash);
-  char sep = ' ';
-  if (line.find('\t') != std::string::npos) sep = '\t';
-  else if (line.find(';') != std::string::npos) sep = ';';
-  else if (line.find(',') != std::string::npos) sep = ',';
-  std::vector<std::string> fields;
-  std::string field;
-  auto flush = [&] {
-    auto b = field.find_first_not_of(" \t\"");
-    auto e = field.find_last_not_of(" \t\"");
-    fields.push_back(b == std::string::npos ? std::string() : field.substr(b, e - b + 1));
-    field.clear();
-  };
-  if (sep == ' ') {
-    for (char c : line) {
-      if (c == ' ' || c == '\t') {
-        if (!field.empty()) flush();
-      } else {
-        field += c;
-      }
-    }
-    if (!field.empty()) flush();
-  } else {
-    for (char c : line) {
-      if (c == sep) flush(); else field += c;
-    }
-    flush();
-  }
-  return fields;
+  return io::split_fields(line);
 }
 
 // Header names that are timestamps, not sensor values (case-insensitive).

@@ -31,11 +31,15 @@ Unit gyro_unit(const NavRequest& r) {
 std::array<GyroAxisNoise, 3> axes_of(const NavRequest& r, const Unit& unit) {
   const auto fitted = std::count_if(r.fitted_axes.begin(), r.fitted_axes.end(), [](const auto& a) { return a.has_value(); });
   if (fitted > 0 && r.coefficients_given) {
-    throw InputError(fmt::format("give the noise either as coefficients or as fits, not both ({} may be added to "
-                                 "either)", option(r.names, "bias")));
+    const auto o = [&](const char* name) { return option(r.names, name); };
+    throw InputError(fmt::format("give the noise either as coefficients ({} {} {} {} {}, {} {}) or as fits ({} or {}), "
+                                 "not both ({} may be added to either)",
+                                 o("Q"), o("N"), o("B"), o("K"), o("R"), o("gm-sigma"), o("gm-tau"), r.fit_option,
+                                 r.per_axis_fit_option, o("bias")));
   }
   if (fitted != 0 && fitted != 3) {
-    throw InputError("give fits for all three axes (x north, y east, z down), or one fit for every axis");
+    throw InputError(fmt::format("give fits for all three axes ({}: x north, y east, z down), or one fit for every "
+                                 "axis ({})", r.per_axis_fit_option, r.fit_option));
   }
   std::array<GyroAxisNoise, 3> axes;
   const GyroAxisNoise common = axis_from_coefficients(r.coefficients, unit, r.names);

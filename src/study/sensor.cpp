@@ -1,8 +1,11 @@
 #include "imunoise/study/sensor.hpp"
 
+#include <cmath>
+#include <limits>
+#include <numbers>
+
 #include "imunoise/error.hpp"
 #include "imunoise/fit/report.hpp"
-#include "imunoise/nav/report.hpp"
 #include "imunoise/spec/report.hpp"
 #include "imunoise/study/fit_stage.hpp"
 #include "imunoise/study/study.hpp"
@@ -10,19 +13,24 @@
 namespace imunoise::study {
 namespace {
 
-// The navigation document at its last time only.
-nlohmann::json at_horizon(const nav::NavResult& result, double latitude_deg) {
-  const auto nav = nav::report_json(result);
+constexpr double kDeg = 180.0 / std::numbers::pi;
+
+double last_in(const std::vector<double>& v, double factor) {
+  if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+  const double x = v.back() * factor;
+  return std::isfinite(x) ? x : std::numeric_limits<double>::quiet_NaN();
+}
+
+nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+
+nlohmann::json nav_json(const NavAtHorizon& nav) {
+  if (!nav.computed) return {{"t_s", nav.t_s}, {"error", nav.error}};
   nlohmann::json models = nlohmann::json::array();
-  double t_s = 0.0;
-  for (const auto& m : nav["models"]) {
-    const std::size_t last = m["t_s"].size() - 1;
-    t_s = m["t_s"][last].get<double>();
-    models.push_back({{"model", m["model"]}, {"lat_deg", m["lat_deg"][last]},
-                      {"path_m", m["path_m"][last]},
-                      {"lon_deg", m["lon_deg"].is_array() ? m["lon_deg"][last] : nlohmann::json(nullptr)}});
+  for (const auto& m : nav.models) {
+    models.push_back({{"model", m.model}, {"lat_deg", number(m.lat_deg)}, {"path_m", number(m.path_m)},
+                      {"lon_deg", number(m.lon_deg)}});
   }
-  return {{"t_s", t_s}, {"latitude_deg", latitude_deg}, {"models", std::move(models)}};
+  return {{"t_s", nav.t_s}, {"latitude_deg", nav.latitude_deg}, {"models", std::move(models)}};
 }
 
 }  // namespace
@@ -49,12 +57,25 @@ SensorStudy study_sensor(const Record& record, const SensorOptions& options) {
 nlohmann::json sensor_json(const Record& record, const SensorOptions& options, const SensorStudy& study) {
   nlohmann::json json = fit::report_json(record_info(record), options.fit, study.fit);
   json["spec_comparison"] = study.comparison ? comparison_json(*study.comparison) : nlohmann::json(nullptr);
-  if (study.nav) {
-    json["nav"] = at_horizon(*study.nav, StudyOptions{}.nav_latitude_deg);
-  } else if (!study.nav_error.empty()) {
-    json["nav"] = {{"t_s", options.nav_hours * 3600.0}, {"error", study.nav_error}};
-  }
+  if (const auto nav = nav_at_horizon(options, study)) json["nav"] = nav_json(*nav);
   return json;
+}
+
+std::optional<NavAtHorizon> nav_at_horizon(const SensorOptions& options, const SensorStudy& study) {
+  if (!study.nav) {
+    if (study.nav_error.empty()) return std::nullopt;
+    return NavAtHorizon{options.nav_hours * 3600.0, 0.0, false, study.nav_error, {}};
+  }
+  NavAtHorizon out;
+  out.computed = true;
+  out.latitude_deg = StudyOptions{}.nav_latitude_deg;
+  for (const auto& s : study.nav->models) {
+    out.t_s = s.t_s.back();
+    out.models.push_back({nav::model_name(s.model), last_in(s.lat_rad, kDeg), last_in(s.north_m, 1.0),
+                          study.nav->longitude_defined ? last_in(s.lon_rad, kDeg)
+                                                       : std::numeric_limits<double>::quiet_NaN()});
+  }
+  return out;
 }
 
 redundant::SensorModel sensor_model(const Record& record) {

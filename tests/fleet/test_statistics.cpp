@@ -1,6 +1,6 @@
 // Fleet statistics against hand-computed values: type-7 quantiles (NumPy's default) and the
 // Iglewicz-Hoaglin robust z-score; and the fleet document's flags, reasons and pass rate on
-// fit documents built by hand.
+// sensor summaries built by hand; and the outcome's bytes between ranks.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -9,6 +9,7 @@
 
 #include "imunoise/error.hpp"
 #include "imunoise/fleet/fleet.hpp"
+#include "imunoise/fleet/outcome_wire.hpp"
 #include "imunoise/fleet/statistics.hpp"
 
 namespace imunoise::fleet {
@@ -45,27 +46,30 @@ TEST(FleetStatistics, RobustZIsMadScaled) {
   for (const double v : robust_z(std::vector<double>{2, 2, 2})) EXPECT_EQ(v, 0.0);
 }
 
-nlohmann::json fit_doc(double n_value, double half_width, const char* verdict = "pass") {
-  nlohmann::json term{{"value", n_value}, {"ci_low", n_value - half_width},
-                      {"ci_high", n_value + half_width}, {"identified", true}, {"fitted", true},
-                      {"unit", "deg/sqrt(s)"}};
-  nlohmann::json spec_term{{"symbol", "N"}, {"verdict", verdict}, {"deviation_percent", 12.5},
-                           {"conclusive", true},
-                           {"measured_in_spec_unit", {{"value", 0.05625}, {"unit", "deg/sqrt(h)"}}},
-                           {"spec", {{"value", 0.05}, {"unit", "deg/sqrt(h)"}}}};
-  return {{"rate_hz", 100.0}, {"n_samples", 1000}, {"unit", "deg/s"},
-          {"terms", {{"N", term}}},
-          {"spec_comparison", {{"spec", "tg100"}, {"all_pass", std::string(verdict) == "pass"},
-                               {"terms", {spec_term}}}}};
+// A sensor whose fit identified N (and nothing else) and whose datasheet verdict on N is given.
+SensorOutcome sensor(const std::string& file, double n_value, double half_width, const char* verdict = "pass") {
+  SensorSummary summary;
+  summary.rate_hz = 100.0;
+  summary.n_samples = 1000;
+  summary.unit = "deg/s";
+  const char* names[] = {"Q", "N", "B", "K", "R"};
+  for (std::size_t j = 0; j < 5; ++j) summary.terms[j] = {names[j], "unit", 0.0, NAN, NAN, false, false};
+  summary.terms[1] = {"N", "deg/sqrt(s)", n_value, n_value - half_width, n_value + half_width, true, true};
+  summary.datasheet = DatasheetSummary{
+      "tg100", std::string(verdict) == "pass", {{"N", verdict, 0.05625, "deg/sqrt(h)", 12.5, 0.05, "deg/sqrt(h)", true}}};
+  return {file, summary, nlohmann::json{{"file", file}}, ""};
 }
+
+SensorOutcome failure(const std::string& file, const std::string& error) { return {file, std::nullopt, nullptr, error}; }
 
 TEST(FleetDocument, FlagsOutliersFailuresAndErrorsWithReasons) {
   std::vector<SensorOutcome> sensors;
-  for (const double n : {1.00, 1.02, 0.98, 1.01, 0.99}) sensors.push_back({"ok" + std::to_string(n), fit_doc(n * 1e-3, 1e-5), ""});
-  sensors.push_back({"far.txt", fit_doc(3e-3, 1e-5, "fail"), ""});
-  sensors.push_back({"wide.txt", fit_doc(2e-3, 1.5e-3), ""});  // far, but its interval holds the median
-  sensors.push_back({"bad.txt", nullptr, "bad.txt:3: not a number"});
-  const auto doc = fleet_document(sensors);
+  for (const double n : {1.00, 1.02, 0.98, 1.01, 0.99}) sensors.push_back(sensor("ok" + std::to_string(n), n * 1e-3, 1e-5));
+  sensors.push_back(sensor("far.txt", 3e-3, 1e-5, "fail"));
+  sensors.push_back(sensor("wide.txt", 2e-3, 1.5e-3));  // far, but its interval holds the median
+  sensors.push_back(failure("bad.txt", "bad.txt:3: not a number"));
+  const auto summary_of_fleet = summarize_fleet(sensors);
+  const auto doc = fleet_document(sensors, summary_of_fleet);
   const auto& far = doc["sensors"][5];
   EXPECT_EQ(far["flags"], nlohmann::json({"outlier", "datasheet_fail"}));
   EXPECT_NE(far["reasons"][0].get<std::string>().find("N = 0.003 deg/sqrt(s) is an outlier"), std::string::npos)
@@ -74,6 +78,7 @@ TEST(FleetDocument, FlagsOutliersFailuresAndErrorsWithReasons) {
   EXPECT_TRUE(doc["sensors"][6]["flags"].empty()) << doc["sensors"][6]["flags"];
   EXPECT_EQ(doc["sensors"][7]["flags"], nlohmann::json({"error"}));
   EXPECT_TRUE(doc["sensors"][7]["fit"].is_null());
+  EXPECT_EQ(doc["sensors"][0]["fit"], nlohmann::json({{"file", "ok1.000000"}}));  // the document, as given
   for (int i = 0; i < 5; ++i) EXPECT_TRUE(doc["sensors"][i]["flags"].empty());
   const auto& summary = doc["summary"];
   EXPECT_EQ(summary["n_files"], 8);
@@ -85,17 +90,46 @@ TEST(FleetDocument, FlagsOutliersFailuresAndErrorsWithReasons) {
   EXPECT_DOUBLE_EQ(summary["datasheet"]["pass_rate"].get<double>(), 6.0 / 7.0);
   // 7 identified N values: 0.98 0.99 1.00 1.01 1.02 2 3 (x1e-3): median 1.01e-3.
   EXPECT_NEAR(summary["coefficients"]["N"]["distribution"]["median"].get<double>(), 1.01e-3, 1e-15);
-  const std::string csv = fleet_csv(doc);
+  // Q B K R were not fitted: no distribution, no column.
+  EXPECT_FALSE(summary["coefficients"].contains("B"));
+  const std::string csv = fleet_csv(sensors, summary_of_fleet);
   EXPECT_NE(csv.find("N [deg/sqrt(s)]"), std::string::npos);
   EXPECT_NE(csv.find("bad.txt,error,"), std::string::npos);
   EXPECT_EQ(std::count(csv.begin(), csv.end(), '\n'), 9);
 }
 
 TEST(FleetDocument, NoOutlierTestBelowFiveSensors) {
-  std::vector<SensorOutcome> sensors{{"a", fit_doc(1e-3, 1e-6), ""}, {"b", fit_doc(1.01e-3, 1e-6), ""},
-                                     {"c", fit_doc(9e-3, 1e-6), ""}};
-  const auto doc = fleet_document(sensors);
+  std::vector<SensorOutcome> sensors{sensor("a", 1e-3, 1e-6), sensor("b", 1.01e-3, 1e-6), sensor("c", 9e-3, 1e-6)};
+  const auto doc = fleet_document(sensors, summarize_fleet(sensors));
   EXPECT_TRUE(doc["summary"]["outliers"].empty());
+}
+
+TEST(FleetWire, AnOutcomeCrossesRanksExactly) {
+  SensorOutcome sent = sensor("b.txt", 1.0e-3 / 3.0, 1e-5, "fail");
+  sent.summary->nav = study::NavAtHorizon{3600.0, 58.5, true, "", {{"schuler", 0.1 / 7.0, 1234.5, NAN}}};
+  const std::vector<std::string> files{"a.txt", "b.txt"};
+  SensorOutcome got;
+  EXPECT_EQ(decode_outcome(encode_outcome(1, sent), files, got), 1u);
+  ASSERT_TRUE(got.ok());
+  EXPECT_EQ(got.file, "b.txt");
+  EXPECT_EQ(got.document, sent.document);
+  EXPECT_EQ(got.summary->terms[1].value, sent.summary->terms[1].value);
+  EXPECT_EQ(got.summary->datasheet->terms.at(0).verdict, "fail");
+  EXPECT_EQ(got.summary->nav->models.at(0).lat_deg, 0.1 / 7.0);
+  EXPECT_TRUE(std::isnan(got.summary->nav->models.at(0).lon_deg));
+  // Both fleets, from the sent and the received outcomes, are the same document.
+  const std::vector<SensorOutcome> a{sent}, b{got};
+  EXPECT_EQ(fleet_document(a, summarize_fleet(a)), fleet_document(b, summarize_fleet(b)));
+
+  const SensorOutcome error = failure("a.txt", "a.txt: empty file");
+  EXPECT_EQ(decode_outcome(encode_outcome(0, error), files, got), 0u);
+  EXPECT_FALSE(got.ok());
+  EXPECT_EQ(got.error, "a.txt: empty file");
+
+  auto bytes = encode_outcome(1, sent);
+  bytes.resize(bytes.size() - 3);
+  EXPECT_THROW(decode_outcome(bytes, files, got), InputError);
+  EXPECT_THROW(decode_outcome(encode_outcome(5, sent), files, got), InputError);
 }
 
 }  // namespace

@@ -49,12 +49,14 @@ TEST(NavRequest, FitsAreAllThreeOrNoneAndNeverBesideCoefficients) {
   fitted.coefficients.random_walk.identified = true;
   NavRequest r;
   r.fitted_axes[0] = fitted;
-  EXPECT_NE(error_of(r).find("all three axes"), std::string::npos);
+  EXPECT_NE(error_of(r).find("all three axes (--from-x, --from-y and --from-z"), std::string::npos) << error_of(r);
   r.fitted_axes.fill(fitted);
   EXPECT_EQ(error_of(r), "");
   EXPECT_EQ(plan_navigation(r).axes[2].coefficients.random_walk.value, 1e-5);
   r.coefficients_given = true;
   EXPECT_NE(error_of(r).find("not both (--bias may be added"), std::string::npos);
+  EXPECT_NE(error_of(r).find("coefficients (--Q --N --B --K --R, --gm-sigma --gm-tau) or as fits (--from or"),
+            std::string::npos) << error_of(r);
 }
 
 TEST(NavRequest, MessagesNameTheOptionAsTheEdgeSpellsIt) {

@@ -72,6 +72,10 @@ enum class Separator { comma, tab, semicolon, whitespace };
 /// "comma", "tab", "semicolon", "whitespace".
 std::string_view separator_name(Separator separator);
 
+/// The fields of one header or data line as the reader splits them: the separator detected
+/// as for a file's first line, each field trimmed and unquoted.
+std::vector<std::string> split_fields(std::string_view line);
+
 /// Maps sample indices to 1-based line numbers without storing one number per sample: it keeps
 /// one entry per run of consecutive data lines (comments and blank lines start a new run).
 class LineMap {

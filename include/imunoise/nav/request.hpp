@@ -32,6 +32,9 @@ struct NavRequest {
   bool earth_rate = true;
   bool signed_constants = false;
   CoefficientNames names{"--", '-'};  ///< how the edge names its options in messages
+  /// How the edge names its fits: one for every axis, and one per axis.
+  std::string fit_option = "--from";
+  std::string per_axis_fit_option = "--from-x, --from-y and --from-z";
 };
 
 /// NavOptions of a request. InputError naming the option (as `names` spells it) and the fix for

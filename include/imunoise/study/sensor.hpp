@@ -4,6 +4,7 @@
 // and, on request, the navigation error at the horizon (the same models as run_study).
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -34,6 +35,23 @@ struct SensorStudy {
   std::string nav_error;
 };
 
+/// The navigation error at the horizon only (a fleet of thousands keeps one number per model
+/// and quantity). A number that is not finite is NaN (null in the document).
+struct NavModelAtHorizon {
+  std::string model;
+  double lat_deg = 0.0;
+  double path_m = 0.0;
+  double lon_deg = 0.0;  ///< NaN where the longitude is undefined (the pole)
+};
+
+struct NavAtHorizon {
+  double t_s = 0.0;
+  double latitude_deg = 0.0;
+  bool computed = false;                  ///< false: `error` says why
+  std::string error;
+  std::vector<NavModelAtHorizon> models;  ///< the study's models, in order
+};
+
 /// InputError naming the record when it cannot be fitted.
 SensorStudy study_sensor(const Record& record, const SensorOptions& options);
 
@@ -42,6 +60,9 @@ SensorStudy study_sensor(const Record& record, const SensorOptions& options);
 /// and quantity): {"t_s", "latitude_deg", "models": [{"model", "lat_deg", "path_m",
 /// "lon_deg"}]}, or {"t_s", "error": why}.
 nlohmann::json sensor_json(const Record& record, const SensorOptions& options, const SensorStudy& study);
+
+/// The "nav" of sensor_json, typed: nullopt when not asked for (options.nav).
+std::optional<NavAtHorizon> nav_at_horizon(const SensorOptions& options, const SensorStudy& study);
 
 /// The noise model a redundant unit's fusion weights and fault detector need when no fit
 /// documents are given: the record's own fit (fit_channel, default options, octave grid), as
