@@ -32,9 +32,7 @@ constexpr GtsamKey kKeys[] = {
 constexpr double kIntegrationCovariance = 1e-8;
 
 detail::Value variance(const ExportModel& m, const GtsamKey& k) {
-  auto v = detail::scaled(k.gyro ? m.gyro : m.accel, k.term, 1.0, m.inflation, k.symbol);
-  if (v.value) v.value = *v.value * *v.value;
-  return v;
+  return detail::squared(detail::scaled(k.gyro ? m.gyro : m.accel, k.term, 1.0, m.inflation, k.symbol));
 }
 
 nlohmann::json diagonal(double v) {
@@ -102,8 +100,8 @@ std::string gtsam_python(const ExportModel& model) {
   for (const auto& k : kKeys) {
     const auto v = variance(model, k);
     if (v.value) {
-      out += fmt::format("params.{}(np.eye(3) * {})  # {} = {}^2\n", k.setter, detail::number(*v.value), k.unit,
-                         k.symbol);
+      out += fmt::format("params.{}(np.eye(3) * {})  # {} = {}^2{}\n", k.setter, detail::number(*v.value), k.unit,
+                         k.symbol, detail::interval_text(v));
     } else {
       out += fmt::format(
           "# params.{}(np.eye(3) * FILL_IN)  # {} -- NOT MEASURED by imunoise: {}\n"

@@ -44,7 +44,7 @@ std::string px4_params(const ExportModel& model) {
   for (const auto& p : params) {
     const auto v = detail::scaled(p.gyro ? model.gyro : model.accel, p.term, s, model.inflation, p.symbol);
     if (v.value) {
-      out += fmt::format("# {} = {} sqrt(f_e) in {}{}\n", p.name, p.symbol, p.unit,
+      out += fmt::format("# {} = {} sqrt(f_e) in {}{}{}\n", p.name, p.symbol, p.unit, detail::interval_text(v),
                          *v.value > 1.0 ? " (ABOVE PX4's clamp of 1: the EKF will use 1)" : "");
       out += fmt::format("1\t1\t{}\t{}\t9\n", p.name, detail::number(*v.value));
     } else {

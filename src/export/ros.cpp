@@ -16,7 +16,8 @@ std::string array_line(const char* key, const detail::Value& v, const char* unit
                        key, unit, v.why_absent);
   }
   const std::string d = detail::number(*v.value);
-  return fmt::format("{}: [{}, 0.0, 0.0, 0.0, {}, 0.0, 0.0, 0.0, {}]  # {} = N^2 f\n", key, d, d, d, unit);
+  return fmt::format("{}: [{}, 0.0, 0.0, 0.0, {}, 0.0, 0.0, 0.0, {}]  # {} = N^2 f{}\n", key, d, d, d, unit,
+                     detail::interval_text(v));
 }
 
 }  // namespace
@@ -30,9 +31,7 @@ std::string ros_covariance_yaml(const ExportModel& model) {
       "# The message has no place for the bias random walk or instability (see the measured lines).\n",
       detail::number(f));
   auto var = [&](const std::optional<SensorModel>& s) {
-    auto v = detail::scaled(s, &NoiseCoefficients::random_walk, std::sqrt(f), model.inflation, "N");
-    if (v.value) v.value = *v.value * *v.value;
-    return v;
+    return detail::squared(detail::scaled(s, &NoiseCoefficients::random_walk, std::sqrt(f), model.inflation, "N"));
   };
   out += array_line("angular_velocity_covariance", var(model.gyro), "rad^2/s^2");
   out += array_line("linear_acceleration_covariance", var(model.accel), "m^2/s^4");

@@ -72,15 +72,33 @@ Value scaled(const std::optional<SensorModel>& sensor, Coefficient NoiseCoeffici
   if (!present(c)) {
     return {std::nullopt, fmt::format("{} not identified{}", symbol, c.note.empty() ? "" : " (" + c.note + ")")};
   }
-  return {c.value * factor * inflation, ""};
+  Value v{c.value * factor * inflation, ""};
+  if (std::isfinite(c.ci_low) && std::isfinite(c.ci_high)) {
+    v.low = c.ci_low * factor * inflation;
+    v.high = c.ci_high * factor * inflation;
+    v.level = sensor->coefficients.confidence_level;
+  }
+  return v;
+}
+
+std::string interval_text(const Value& v) {
+  if (!(std::isfinite(v.low) && std::isfinite(v.high))) return " (no interval)";
+  return fmt::format(" ({:.0f}% interval {:.6g} .. {:.6g})", v.level * 100.0, v.low, v.high);
+}
+
+Value squared(Value v) {
+  if (v.value) v.value = *v.value * *v.value;
+  v.low *= v.low;
+  v.high *= v.high;
+  return v;
 }
 
 std::string key_line(std::string_view indent, std::string_view key, const Value& v,
                      std::string_view note, std::string_view consequence, std::string_view comment,
                      std::string_view separator, std::string_view terminator) {
   if (v.value) {
-    return fmt::format("{}{}{}{}{}  {} {}\n", indent, key, separator, number(*v.value), terminator,
-                       comment, note);
+    return fmt::format("{}{}{}{}{}  {} {}{}\n", indent, key, separator, number(*v.value), terminator,
+                       comment, note, interval_text(v));
   }
   return fmt::format("{}{} {}{}<FILL IN>{}  {} {} -- NOT MEASURED by imunoise: {}; {}\n", indent,
                      comment, key, separator, terminator, comment, note, v.why_absent, consequence);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -86,6 +87,24 @@ TEST(ExportText, EveryFileSaysWhatWasMeasuredAndTheInflation) {
         EXPECT_EQ(text.find("<FILL IN>"), std::string::npos) << name;
       }
     }
+  }
+}
+
+// Each written value carries its own interval, in the file's units and discretisation.
+TEST(ExportText, EachValueStatesItsInterval) {
+  const auto m = model(true, 2.0);
+  char want[128];
+  std::snprintf(want, sizeof want, "(95%% interval %.6g .. %.6g)", 0.9 * kGyroN * kS * 2.0, 1.1 * kGyroN * kS * 2.0);
+  const std::string vins = vins_yaml(m);
+  ASSERT_NE(vins.find("gyr_n: "), std::string::npos);
+  EXPECT_NE(vins.substr(vins.find("gyr_n: ")).find(want), std::string::npos) << want << "\n" << vins;
+  const auto sq = [](double x) { return x * x; };
+  std::snprintf(want, sizeof want, "(95%% interval %.6g .. %.6g)", sq(0.9 * kAccelN * kS * 2.0),
+                sq(1.1 * kAccelN * kS * 2.0));
+  const std::string ros = ros_covariance_yaml(m);
+  EXPECT_NE(ros.substr(ros.find("linear_acceleration_covariance: [")).find(want), std::string::npos) << want;
+  for (const auto& text : {openvins_yaml(m), orbslam3_yaml(m), px4_params(m), matlab_script(m), gtsam_python(m)}) {
+    EXPECT_NE(text.find("95% interval"), std::string::npos);
   }
 }
 
