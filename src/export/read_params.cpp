@@ -3,6 +3,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <charconv>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -72,6 +73,7 @@ double yaml_number(const YAML::Node& n, const std::string& name, const std::stri
 
 void read_yaml(ParamsFile& f, const std::string& text) {
   const YAML::Node top = load_yaml(text, f.path);
+  if (!top.IsMap()) bad(f.path, "not a YAML map of keys; fix: check the file or --target");
   const YAML::Node y = f.target == Target::openvins ? top["imu0"] : top;
   if (!y || !y.IsMap()) bad(f.path, f.target == Target::openvins ? "no imu0 map (OpenVINS)" : "not a YAML map");
   for (const auto& spec : target_keys(f.target)) {
@@ -83,6 +85,10 @@ void read_yaml(ParamsFile& f, const std::string& text) {
     if (f.target == Target::ros) {
       if (!n.IsSequence() || n.size() != 9) bad(f.path, spec.key + " is not a list of 9 numbers (row-major 3x3)");
       const double d = yaml_number(n[0], f.path, spec.key + "[0]");
+      if (d == -1.0) {  // the message's own "not provided"
+        f.missing.push_back(spec.key);
+        continue;
+      }
       for (int i : {4, 8}) {
         if (yaml_number(n[i], f.path, fmt::format("{}[{}]", spec.key, i)) != d) {
           bad(f.path, spec.key + ": the diagonal differs between axes; imunoise checks one value per triad");
@@ -185,6 +191,13 @@ ParamsFile read_params_text(const std::string& text, const std::string& name, st
     case Target::px4:
     case Target::matlab: read_lines(f, text); break;
     default: read_yaml(f, text); break;
+  }
+  for (const auto& v : f.values) {
+    if (!(std::isfinite(v.value) && v.value > 0.0)) {
+      bad(name, fmt::format("{} = {:g} is not a positive number (a noise value is a standard deviation or "
+                            "variance); fix: correct it, or remove the key to leave it unchecked",
+                            v.spec.key, v.value));
+    }
   }
   if (f.values.empty()) {
     std::string keys;

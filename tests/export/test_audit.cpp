@@ -113,6 +113,15 @@ TEST(ExportAudit, ReaderRefusesWhatItCannotRead) {
   EXPECT_THROW(read_params_text("1\t1\tEKF2_GYR_NOISE\n", "p.params"), InputError);
   EXPECT_THROW(read_params_text("a: 1\n", "x.yaml", Target::vins), InputError);  // none of its keys
   EXPECT_THROW(read_params_text("angular_velocity_covariance: [1, 0, 0, 0, 2, 0, 0, 0, 1]\n", "r.yaml"), InputError);
+  EXPECT_THROW(read_params_text("hello\n", "x.yaml", Target::openvins), InputError);  // a scalar, not a map
+  EXPECT_THROW(read_params_text("gyr_n: -1\n", "v.yaml"), InputError);
+  EXPECT_THROW(read_params_text("1\t1\tEKF2_GYR_NOISE\tnan\t9\n", "p.params"), InputError);
+  // ROS's own "not provided" (-1 in element 0) is a missing value, not an error.
+  const auto ros = read_params_text(
+      "angular_velocity_covariance: [-1, 0, 0, 0, 0, 0, 0, 0, 0]\n"
+      "linear_acceleration_covariance: [0.1, 0, 0, 0, 0.1, 0, 0, 0, 0.1]\n", "r.yaml");
+  EXPECT_EQ(ros.values.size(), 1u);
+  EXPECT_EQ(ros.missing, std::vector<std::string>{"angular_velocity_covariance"});
   // OpenCV's header line and a commented key (a placeholder) are understood.
   const auto f = read_params_text("%YAML:1.0\n# acc_n: <FILL IN>\ngyr_n: 0.01\n", "v.yaml");
   EXPECT_EQ(f.target, Target::vins);
