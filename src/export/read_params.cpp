@@ -155,8 +155,10 @@ void read_lines(ParamsFile& f, const std::string& text) {
       if (!v) bad(f.path, fmt::format("line {}: {} value '{}' is not a number", number, field[2], field[3]));
       found[field[2]] = *v;
     } else {
+      // std::regex recurses per character: a long line (data, not a property assignment) is
+      // skipped rather than risk the stack.
       std::smatch m;
-      if (!std::regex_match(line, m, assign)) continue;  // other MATLAB statements
+      if (line.size() > 1000 || !std::regex_match(line, m, assign)) continue;  // other MATLAB statements
       const auto v = strict_number(m[2].str());
       if (v) found[m[1].str()] = *v;
     }
