@@ -17,6 +17,7 @@ packages=(
   gnuplot-nox chromium fonts-dejavu-core
   libhdf5-dev libbz2-dev liblz4-dev libzstd-dev python3-h5py python3-rosbag python3-sensor-msgs
   libopenmpi-dev openmpi-bin
+  libopencv-dev
 )
 # The report's Plotly.js comes from npm (web/package-lock.json); Debian's npm only when none is
 # installed (a NodeSource node ships its own npm and conflicts with Debian's).

@@ -14,6 +14,7 @@
 #include "imunoise/comma_list.hpp"
 #include "imunoise/confidence/interval.hpp"
 #include "imunoise/error.hpp"
+#include "imunoise/export/export_model.hpp"
 #include "imunoise/estimator.hpp"
 #include "imunoise/fit/report.hpp"
 #include "imunoise/io/binary_reader.hpp"
@@ -23,6 +24,7 @@
 #include "imunoise/study/write.hpp"
 #include "fit_options.hpp"
 #include "input_options.hpp"
+#include "spec_exports.hpp"
 #include "study_progress.hpp"
 
 namespace imunoise::cli {
@@ -43,11 +45,15 @@ struct AnalyzeOptionsCli {
   bool quiet = false;
   unsigned threads = 0;
   std::string title;
+  FilterExportOptions filter;
 };
 
 void run_analyze(const AnalyzeOptionsCli& o) {
   if (o.dir.empty()) throw InputError("analyze needs -o DIR: the directory the report goes to");
   study::check_report_dir(o.dir, o.force);  // before the study's work, not after
+  FilterExportOptions filter = o.filter;
+  filter.force = o.force;
+  check_filter_exports(filter, o.dir);
   study::StudyOptions so;
   so.curves.estimators = parse_estimator_list(o.estimators);
   validate_confidence_level(o.ci_level, "--ci");
@@ -95,6 +101,26 @@ void run_analyze(const AnalyzeOptionsCli& o) {
   const auto doc = study::study_json(result);
   const auto written = study::write_report(doc, o.dir, {o.force, "", "gnuplot"});
   progress.done();
+  std::vector<exports::AxisFit> fits;
+  std::string sources;
+  double rate_hz = 0.0;
+  for (const auto& ch : result.channels) {
+    if (!ch.fit) continue;
+    fits.push_back(exports::axis_fit(ch.record, ch.fit->coefficients));
+    fits.back().channel = ch.record.name;
+    if (sources.find(ch.record.source) == std::string::npos) sources += (sources.empty() ? "" : ", ") + ch.record.source;
+    if (rate_hz == 0.0) rate_hz = ch.record.rate_hz;
+    if (ch.record.rate_hz != rate_hz && !filter.exports.empty()) {
+      throw InputError(fmt::format("--export: channel {} is sampled at {:g} Hz and the others at {:g} Hz; a filter "
+                                   "file has one rate; fix: export from channels of one rate",
+                                   ch.record.name, ch.record.rate_hz, rate_hz));
+    }
+  }
+  if (!filter.exports.empty()) {
+    for (const auto& e : run_filter_exports(filter, fits, rate_hz, sources, o.dir)) {
+      fmt::print("export: {} ({})\n", e["path"].get<std::string>(), e["target"].get<std::string>());
+    }
+  }
   for (const auto& ch : result.channels) {
     if (!ch.error.empty()) fmt::print(stderr, "imunoise: warning: {} failed: {}\n", ch.record.name, ch.error);
     for (const auto& w : ch.warnings) fmt::print(stderr, "imunoise: warning: {}: {}\n", ch.record.name, w);
@@ -137,6 +163,7 @@ void setup_analyze(CLI::App& app) {
   command->add_flag("-q,--quiet", o->quiet, "no progress on standard error");
   command->add_option("--threads", o->threads, "worker threads (0: all cores)");
   command->add_option("--title", o->title, "title of the report");
+  add_filter_export_options(*command, o->filter);
   command->callback([o] { run_analyze(*o); });
 }
 

@@ -13,5 +13,6 @@ void setup_redundant(CLI::App& app);
 void setup_fleet(CLI::App& app);
 void setup_analyze(CLI::App& app);
 void setup_demo(CLI::App& app);
+void setup_check(CLI::App& app);
 
 }  // namespace imunoise::cli

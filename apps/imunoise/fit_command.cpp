@@ -14,6 +14,7 @@
 #include "commands.hpp"
 #include "imunoise/allan.hpp"
 #include "imunoise/error.hpp"
+#include "imunoise/export/export_model.hpp"
 #include "imunoise/fit/fit.hpp"
 #include "imunoise/fit/report.hpp"
 #include "imunoise/preprocess/pipeline.hpp"
@@ -67,6 +68,8 @@ void run_fit(FitCommandOptions& options) {
     throw InputError("unknown --format '" + options.format + "'; use json or table");
   }
   const fit::FitOptions fo = to_fit_options(options.fit);
+  options.spec.filter.force = options.output.force;
+  check_filter_exports(options.spec.filter, "");  // refuse before the fit, not after
   Record record;
   fit::FitResult result;
   if (options.mpi) {
@@ -87,6 +90,8 @@ void run_fit(FitCommandOptions& options) {
   nlohmann::json json = fit::report_json(study::record_info(record), fo, result);
   options.spec.force = options.output.force;
   json["spec_comparison"] = run_spec_exports(options.spec, result.coefficients, record.rate_hz);
+  const exports::AxisFit axis = exports::axis_fit(record, result.coefficients);
+  json["exports"] = run_filter_exports(options.spec.filter, {&axis, 1}, record.rate_hz, record.source, "");
   study::add_provenance(record, fo, json);
   std::string preprocessing_lines;
   for (const auto& line : record.preprocessing) preprocessing_lines += "# preprocessing: " + line + "\n";

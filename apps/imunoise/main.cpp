@@ -24,6 +24,7 @@ constexpr std::array kCommands{
     Command{"fit", imunoise::cli::setup_fit},         Command{"nav", imunoise::cli::setup_nav},
     Command{"redundant", imunoise::cli::setup_redundant}, Command{"fleet", imunoise::cli::setup_fleet},
     Command{"analyze", imunoise::cli::setup_analyze}, Command{"demo", imunoise::cli::setup_demo},
+    Command{"check", imunoise::cli::setup_check},
 };
 
 // Registering every command's options is most of the start-up's own work, so only the command
