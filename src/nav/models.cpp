@@ -7,6 +7,7 @@
 #include <fmt/core.h>
 
 #include "error_model.hpp"
+#include "term_split.hpp"
 #include "imunoise/nav/models.hpp"
 #include "imunoise/nav/paper.hpp"
 #include "imunoise/nav/schuler.hpp"
@@ -116,24 +117,20 @@ ModelSeries schuler_series(const NavOptions& o, const ImuTerms& terms, const std
   return s;
 }
 
-ModelSeries covariance_series(const NavOptions& o, const ImuTerms& terms, const std::vector<double>& t_s) {
-  ModelSeries s;
-  s.model = Model::covariance;
-  const detail::DiscreteModel d = detail::discrete_model(o, terms.gyro, terms.accel);
-  const detail::FlickerRange range = detail::flicker_range(o);
-  s.assumptions = fmt::format(
-      "linearised NED error model of a stationary level INS at latitude {:.6g} deg: both horizontal "
-      "channels and the azimuth (phi-angle form, Titterton & Weston ch. 12), {}; vertical channel not "
-      "modelled (the down accelerometer left out); gyro and accelerometer noise as states (rate random walk, bias, ramp, Gauss-Markov, B as the simulator's "
-      "Gauss-Markov bank over [{:.6g}, {:.6g}] s, quantization at dt); exact discrete transition exp(F dt) "
-      "and Van Loan noise at dt = {:.6g} s; P <- Phi P Phi' + Qd (a sum of positive semi-definite terms), "
-      "composed by doubling to the reporting step, symmetrized after every product; {} states",
-      o.latitude_rad * 180.0 / std::numbers::pi,
-      o.earth_rate ? "with Earth rate and Coriolis coupling" : "Earth rate and Coriolis off", range.tau_min_s,
-      range.tau_max_s, o.dt_s, d.phi.rows());
+namespace {
+
+// P at each reported time (only its nav part kept, and the whole P at the end for the checks),
+// for the discrete model of these terms.
+struct Propagated {
+  std::vector<double> var_n, var_e;  // of th_N and th_E (rad^2)
+  Eigen::MatrixXd last;
+};
+
+Propagated propagate(const NavOptions& o, const detail::DiscreteModel& d, const std::vector<double>& t_s) {
   // The discrete model is exact at dt; between reported times its m-fold composition
   // (Phi^m, sum_j Phi^j Qd Phi^j') is formed by doubling, which is the same propagation in
   // log2(m) products instead of m.
+  Propagated out;
   Eigen::MatrixXd p = d.p0;
   long k = 0;
   long cached_m = -1;
@@ -157,9 +154,53 @@ ModelSeries covariance_series(const NavOptions& o, const ImuTerms& terms, const 
       }
       k = target;
     }
-    s.t_s.push_back(t);
-    fill_from_variances(o, p(0, 0), p(1, 1), s);
+    out.var_n.push_back(p(0, 0));
+    out.var_e.push_back(p(1, 1));
   }
+  out.last = std::move(p);
+  return out;
+}
+
+}  // namespace
+
+ModelSeries covariance_series(const NavOptions& o, const ImuTerms& terms, const std::vector<double>& t_s) {
+  ModelSeries s;
+  s.model = Model::covariance;
+  const detail::DiscreteModel d = detail::discrete_model(o, terms.gyro, terms.accel);
+  const detail::FlickerRange range = detail::flicker_range(o);
+  s.assumptions = fmt::format(
+      "linearised NED error model of a stationary level INS at latitude {:.6g} deg: both horizontal "
+      "channels and the azimuth (phi-angle form, Titterton & Weston ch. 12), {}; vertical channel not "
+      "modelled (the down accelerometer left out); gyro and accelerometer noise as states (rate random "
+      "walk, bias, ramp, Gauss-Markov, B as the simulator's Gauss-Markov bank over [{:.6g}, {:.6g}] s, "
+      "quantization at dt); exact discrete transition exp(F dt) and Van Loan noise at dt = {:.6g} s; "
+      "P <- Phi P Phi' + Qd (a sum of positive semi-definite terms), composed by doubling to the reporting "
+      "step, symmetrized after every product; {} states; the error budget from one propagation per term",
+      o.latitude_rad * 180.0 / std::numbers::pi,
+      o.earth_rate ? "with Earth rate and Coriolis coupling" : "Earth rate and Coriolis off", range.tau_min_s,
+      range.tau_max_s, o.dt_s, d.phi.rows());
+  const Propagated whole = propagate(o, d, t_s);
+  for (std::size_t i = 0; i < t_s.size(); ++i) {
+    s.t_s.push_back(t_s[i]);
+    fill_from_variances(o, whole.var_n[i], whole.var_e[i], s);
+  }
+  // The budget: each term alone; the shares of the horizontal variance add up to 1.
+  std::vector<std::pair<std::string, std::vector<double>>> parts;
+  std::vector<double> total(t_s.size(), 0.0);
+  for (const detail::TermPart& part : detail::split_terms(terms.gyro, terms.accel)) {
+    const Propagated p = propagate(o, detail::discrete_model(o, part.gyro, part.accel), t_s);
+    std::vector<double> var(t_s.size());
+    for (std::size_t i = 0; i < t_s.size(); ++i) {
+      var[i] = p.var_n[i] + p.var_e[i];
+      total[i] += var[i];
+    }
+    parts.emplace_back(part.name, std::move(var));
+  }
+  for (auto& [name, var] : parts) {
+    for (std::size_t i = 0; i < t_s.size(); ++i) var[i] = total[i] > 0.0 ? var[i] / total[i] : 0.0;
+    s.budget.emplace_back(name, std::move(var));
+  }
+  const Eigen::MatrixXd& p = whole.last;
   CovarianceCheck check;
   check.states = static_cast<std::size_t>(p.rows());
   const double scale = p.cwiseAbs().maxCoeff();

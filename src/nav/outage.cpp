@@ -7,6 +7,7 @@
 #include <fmt/core.h>
 
 #include "error_model.hpp"
+#include "term_split.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/nav/schuler.hpp"
 
@@ -46,37 +47,6 @@ double horizontal_variance(const detail::NavMatrix& p, double radius_m) {
   return radius_m * radius_m * (p(0, 0) + p(1, 1));
 }
 
-// One noise term kept (all axes), the others zeroed: term j of Q N B K R GM bias.
-GyroTerms only(const GyroTerms& t, int j) {
-  GyroTerms o;
-  switch (j) {
-    case 0: o.q_rad = t.q_rad; break;
-    case 1: o.n_rad_sqrt_s = t.n_rad_sqrt_s; break;
-    case 2: o.b_rad_s = t.b_rad_s; break;
-    case 3: o.k_rad_s_sqrt_s = t.k_rad_s_sqrt_s; break;
-    case 4: o.r_rad_s2 = t.r_rad_s2; break;
-    case 5: o.gm_sigma_rad_s = t.gm_sigma_rad_s; o.gm_time_s = t.gm_time_s; break;
-    default: o.bias_rad_s = t.bias_rad_s; break;
-  }
-  return o;
-}
-
-AccelTerms only(const AccelTerms& t, int j) {
-  AccelTerms o;
-  switch (j) {
-    case 0: o.q_m_s = t.q_m_s; break;
-    case 1: o.n_m_s_sqrt_s = t.n_m_s_sqrt_s; break;
-    case 2: o.b_m_s2 = t.b_m_s2; break;
-    case 3: o.k_m_s2_sqrt_s = t.k_m_s2_sqrt_s; break;
-    case 4: o.r_m_s3 = t.r_m_s3; break;
-    case 5: o.gm_sigma_m_s2 = t.gm_sigma_m_s2; o.gm_time_s = t.gm_time_s; break;
-    default: o.bias_m_s2 = t.bias_m_s2; break;
-  }
-  return o;
-}
-
-constexpr const char* kTermNames[] = {"Q", "N", "B", "K", "R", "GM", "bias"};
-
 }  // namespace
 
 std::vector<OutagePoint> outage_errors(const NavOptions& o, const std::array<GyroTerms, 3>& gyro,
@@ -105,20 +75,8 @@ std::vector<OutagePoint> outage_errors(const NavOptions& o, const std::array<Gyr
   std::vector<Part> parts;
   const std::array<GyroTerms, 3> no_gyro{};
   const std::array<AccelTerms, 3> no_accel{};
-  for (int j = 0; j < 7; ++j) {
-    std::array<GyroTerms, 3> g{};
-    std::array<AccelTerms, 3> a{};
-    bool gyro_term = false, accel_term = false;
-    for (std::size_t i = 0; i < 3; ++i) {
-      g[i] = only(gyro[i], j);
-      a[i] = only(accel[i], j);
-      const auto gv = detail::sensor_terms(g[i]);
-      const auto av = detail::sensor_terms(a[i]);
-      gyro_term = gyro_term || gv.q || gv.n || gv.b || gv.k || gv.r || gv.gm_sigma || gv.bias;
-      accel_term = accel_term || ((av.q || av.n || av.b || av.k || av.r || av.gm_sigma || av.bias) && i < 2);
-    }
-    if (gyro_term) parts.push_back({fmt::format("gyro {}", kTermNames[j]), propagate(o, g, no_accel, steps, 0, 0, 0)});
-    if (accel_term) parts.push_back({fmt::format("accel {}", kTermNames[j]), propagate(o, no_gyro, a, steps, 0, 0, 0)});
+  for (const detail::TermPart& part : detail::split_terms(gyro, accel)) {
+    parts.push_back({part.name, propagate(o, part.gyro, part.accel, steps, 0, 0, 0)});
   }
   if (o.initial_pos_m > 0) parts.push_back({"initial position", propagate(o, no_gyro, no_accel, steps, o.initial_pos_m, 0, 0)});
   if (o.initial_vel_m_s > 0) parts.push_back({"initial velocity", propagate(o, no_gyro, no_accel, steps, 0, o.initial_vel_m_s, 0)});

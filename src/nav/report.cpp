@@ -1,5 +1,6 @@
 #include "imunoise/nav/report.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -134,6 +135,11 @@ nlohmann::json report_json(const NavResult& r) {
       m["path_mean_se_m"] = scaled(st.se_mean_north_m, 1.0);
       m["east_mean_m"] = scaled(st.mean_east_m, 1.0);
       m["east_mean_se_m"] = scaled(st.se_mean_east_m, 1.0);
+    }
+    if (!s.budget.empty()) {
+      nlohmann::json budget = nlohmann::json::object();
+      for (const auto& [term, shares] : s.budget) budget[term] = shares;
+      m["budget"] = std::move(budget);
     }
     if (s.covariance_check) {
       m["check"] = {{"states", s.covariance_check->states},
@@ -309,6 +315,18 @@ std::string report_table(const NavResult& r) {
       out += row.which <= 2 ? pad(num(p[row.which], 5), w) : pad("-", w);
     }
     out += "\n";
+  }
+  for (const auto& s : r.models) {
+    if (s.budget.empty()) continue;
+    std::vector<std::pair<double, std::string>> shares;
+    for (const auto& [term, v] : s.budget) shares.emplace_back(v[i], term);
+    std::stable_sort(shares.begin(), shares.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::string list;
+    for (const auto& [share, term] : shares) {
+      if (share >= 0.0005) list += fmt::format("{}{} {:.1f} %", list.empty() ? "" : ", ", term, 100.0 * share);
+    }
+    out += fmt::format("# error budget at {} s (share of the horizontal position variance): {}; improve {} first\n",
+                       num(t), list, shares.front().second);
   }
   for (const auto& s : r.models) {
     out += std::string("# ") + model_name(s.model) + ": " + s.assumptions + "\n";

@@ -112,6 +112,35 @@ TEST(NavOutage, BudgetSharesSumToOneAndNameTheDominantTerm) {
   EXPECT_NEAR(share, std::pow(alone[0].horizontal_m / points[1].horizontal_m, 2), 1e-9);
 }
 
+// The covariance model's budget at every reported time: shares that add up to 1, each the
+// variance of its term alone over the whole (with the Earth rate on: the coupling is linear too).
+TEST(NavBudget, CovarianceSharesAreEachTermAloneOverTheWhole) {
+  NavOptions o;
+  o.duration_s = 3600.0;
+  o.step_s = 600.0;
+  o.models = {Model::covariance};
+  o.latitude_rad = 45.0 * std::numbers::pi / 180.0;
+  for (auto& a : o.axes) {
+    a.coefficients.random_walk = present(1e-5);
+    a.coefficients.bias_instability = present(5e-6);
+  }
+  for (auto& a : o.accel_axes) a.bias_m_s2 = 2e-3;
+  const NavResult whole = navigation_error(o);
+  const ModelSeries& c = whole.models[0];
+  ASSERT_EQ(c.budget.size(), 3u);  // gyro N, gyro B, accel bias
+  for (std::size_t i = 1; i < c.t_s.size(); ++i) {
+    double sum = 0.0;
+    for (const auto& [term, shares] : c.budget) sum += shares[i];
+    EXPECT_NEAR(sum, 1.0, 1e-12);
+  }
+  NavOptions alone = o;
+  for (auto& a : alone.axes) a = GyroAxisNoise{};
+  const NavResult bias = navigation_error(alone);
+  const double r2 = std::pow(bias.models[0].radial_m.back() / c.radial_m.back(), 2);
+  EXPECT_EQ(c.budget[2].first, "accel bias");
+  EXPECT_NEAR(c.budget[2].second.back(), r2, 1e-9);
+}
+
 TEST(NavOutage, BadHorizonsAreRefused) {
   NavOptions o = outage({0.5});
   EXPECT_THROW(outage_errors(o, {}, {}), InputError);

@@ -165,6 +165,9 @@ struct ModelSeries {
   std::optional<MonteCarloStats> montecarlo;
   std::optional<CovarianceCheck> covariance_check;
   double paper_sigma_eps_rad_s = 0.0;  ///< paper model only: the sigma_eps used
+  /// covariance only: each term's share of the horizontal position variance per reported time
+  /// ("gyro N", "accel bias", ...; the shares add up to 1), in the order Q N B K R GM bias.
+  std::vector<std::pair<std::string, std::vector<double>>> budget;
 };
 
 /// The errors at one GNSS-outage horizon (outage.hpp).
