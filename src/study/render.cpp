@@ -156,16 +156,20 @@ struct NavRow {
 
 std::vector<NavRow> nav_rows(const json& doc) {
   std::vector<NavRow> rows;
+  // Each gyro alone on every axis, then the whole IMU (its gyros and accelerometers on their axes).
+  std::vector<std::pair<std::string, const json*>> navs;
   for (const auto& ch : doc["channels"]) {
-    if (!ch.contains("nav") || ch["nav"].is_null()) continue;
-    for (const auto& m : ch["nav"]["models"]) {
+    if (ch.contains("nav") && !ch["nav"].is_null()) navs.emplace_back(str(ch["name"]), &ch["nav"]);
+  }
+  if (doc.contains("imu_nav") && !doc["imu_nav"].is_null()) navs.emplace_back("whole IMU", &doc["imu_nav"]["nav"]);
+  for (const auto& [name, nav] : navs) {
+    for (const auto& m : (*nav)["models"]) {
       const std::size_t last = m["t_s"].size() - 1;
       auto at = [&](const char* key) {
         return m.contains(key) && m[key].is_array() && m[key][last].is_number()
                    ? m[key][last].get<double>() : NAN;
       };
-      rows.push_back({str(ch["name"]), str(m["model"]), num(m["t_s"][last]), at("lat_deg"),
-                      at("path_m"), at("lon_deg")});
+      rows.push_back({name, str(m["model"]), num(m["t_s"][last]), at("lat_deg"), at("path_m"), at("lon_deg")});
     }
   }
   return rows;

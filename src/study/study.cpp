@@ -2,6 +2,7 @@
 #include "imunoise/study/study.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <numbers>
 #include <span>
@@ -256,6 +257,87 @@ nlohmann::json davar_json(const Record& record, const preprocess::DavarResult& d
                    "non-stationary with probability < 0.001); stationary: no window flagged"}};
 }
 
+// x, y or z from a channel's name: a word of its own (gyro_x_dps, w_RS_S_y) or its last letter
+// (az); -1 when it says none.
+int axis_of_name(const std::string& name) {
+  auto axis = [](char c) {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return c == 'x' ? 0 : c == 'y' ? 1 : c == 'z' ? 2 : -1;
+  };
+  int found = -1;
+  std::size_t words = 0;
+  for (std::size_t i = 0; i < name.size();) {
+    std::size_t j = i;
+    while (j < name.size() && std::isalnum(static_cast<unsigned char>(name[j]))) ++j;
+    if (j == i + 1 && axis(name[i]) >= 0) {
+      found = axis(name[i]);
+      ++words;
+    }
+    i = std::max(j, i) + 1;
+  }
+  if (words == 1) return found;
+  return name.empty() ? -1 : axis(name.back());
+}
+
+// The channels of one sensor kind on the axes: by name when every name says a distinct axis,
+// otherwise in the order given (at most three).
+std::array<const ChannelStudy*, 3> on_axes(const std::vector<const ChannelStudy*>& channels) {
+  std::array<const ChannelStudy*, 3> axes{};
+  bool by_name = channels.size() <= 3;
+  for (const ChannelStudy* ch : channels) {
+    const int a = axis_of_name(ch->record.name);
+    if (a < 0 || axes[static_cast<std::size_t>(a)] != nullptr) {
+      by_name = false;
+      break;
+    }
+    axes[static_cast<std::size_t>(a)] = ch;
+  }
+  if (by_name) return axes;
+  axes = {};
+  for (std::size_t i = 0; i < channels.size() && i < 3; ++i) axes[i] = channels[i];
+  return axes;
+}
+
+nav::NavOptions nav_options(const StudyOptions& options, const NoiseCoefficients& c);
+
+// The whole IMU (study.hpp, Study::imu).
+void study_imu(Study& study) {
+  std::vector<const ChannelStudy*> gyros, accels;
+  for (const auto& ch : study.channels) {
+    if (!ch.fit || !ch.record.unit_given) continue;
+    if (ch.fit->coefficients.quantity == Quantity::angular_rate) gyros.push_back(&ch);
+    if (ch.fit->coefficients.quantity == Quantity::acceleration) accels.push_back(&ch);
+  }
+  if (gyros.empty() || accels.empty()) return;
+  const auto g = on_axes(gyros), a = on_axes(accels);
+  nav::NavOptions o = nav_options(study.options, NoiseCoefficients{});
+  Study::ImuNavigation imu;
+  for (std::size_t i = 0; i < 3; ++i) {
+    o.axes[i] = nav::GyroAxisNoise{};
+    if (g[i]) {
+      o.axes[i].coefficients = g[i]->fit->coefficients;
+      imu.gyro_channels[i] = g[i]->record.name;
+    }
+    if (a[i]) {
+      o.accel_axes[i].coefficients = a[i]->fit->coefficients;
+      imu.accel_channels[i] = a[i]->record.name;
+    }
+  }
+  // The paper's eq. 6 is a gyro formula for one axis: the whole IMU is told by the physical models.
+  std::vector<nav::Model> models;
+  for (nav::Model m : o.models) {
+    if (m != nav::Model::paper) models.push_back(m);
+  }
+  if (models.empty()) models = {nav::Model::schuler, nav::Model::covariance};
+  o.models = models;
+  try {
+    imu.result = nav::navigation_error(o);
+    study.imu = std::move(imu);
+  } catch (const InputError& e) {
+    study.notes.push_back(std::string("whole-IMU navigation error not computed: ") + e.what());
+  }
+}
+
 nav::NavOptions nav_options(const StudyOptions& options, const NoiseCoefficients& c) {
   nav::NavOptions o;
   for (auto& axis : o.axes) axis.coefficients = c;  // the same gyro on every axis (eq. 6)
@@ -463,6 +545,7 @@ Study run_study(std::vector<Record> records, const StudyOptions& options,
     ch.record.phase_si.clear();
     ch.record.phase_si.shrink_to_fit();
   }
+  study_imu(study);
   if (progress) progress("done", 1.0);
   return study;
 }
@@ -541,6 +624,12 @@ nlohmann::json study_json(const Study& study) {
   }
   if (study.redundant && !study.fused_curves.empty()) {
     doc["redundant"]["fused_curves"] = curves_json(study.fused_record, study.fused_curves);
+  }
+  doc["imu_nav"] = nullptr;
+  if (study.imu) {
+    doc["imu_nav"] = {{"gyro_channels", study.imu->gyro_channels},
+                      {"accel_channels", study.imu->accel_channels},
+                      {"nav", nav::report_json(study.imu->result)}};
   }
   doc["kalibr"] = kalibr_json(study);
   doc["notes"] = study.notes;

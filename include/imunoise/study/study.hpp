@@ -10,6 +10,7 @@
 // Channels must share one sample rate, and channels of one quantity one unit (a mixed set
 // would put incomparable curves on one figure and cannot be fused); a channel whose stage
 // fails is kept with its error when keep_going is set, otherwise the InputError propagates.
+#include <array>
 #include <functional>
 #include <optional>
 #include <string>
@@ -82,6 +83,15 @@ struct Study {
   std::vector<Curve> fused_curves;  ///< oadev of the fused body axes x, y, z (from the samples)
   Record fused_record;              ///< rate and unit of the fused axes (no samples kept)
   std::vector<std::string> notes;   ///< study-level remarks (stages not available, ...)
+  /// The whole IMU's navigation error, when the study has fitted gyro and accelerometer
+  /// channels with units: each channel on its axis (x north, y east, z down) by the last letter
+  /// of its name (gyro_x, w_RS_S_y, az), or in the order given when the names do not say.
+  struct ImuNavigation {
+    nav::NavResult result;
+    std::array<std::string, 3> gyro_channels;   ///< per axis ("" : none)
+    std::array<std::string, 3> accel_channels;
+  };
+  std::optional<ImuNavigation> imu;
 };
 
 /// Checks that the channels can be studied together (rate and units); InputError naming the
