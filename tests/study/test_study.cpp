@@ -349,6 +349,30 @@ TEST(Study, KalibrFileCombinesTheAxesByTheStatedRule) {
   EXPECT_NE(text.find("\naccelerometer_noise_density: "), std::string::npos) << text;
 }
 
+// The whole IMU: gyros and accelerometers on their axes by name (here given out of order), the
+// physical models only, each sensor's fitted coefficients on its own axis; a study without
+// accelerometers has none.
+TEST(Study, WholeImuNavigationPutsEachChannelOnItsAxis) {
+  std::vector<study::Record> records;
+  records.push_back(test::simulated_gyro("gyro_y", 2e-3, 0.0, 100.0, 1200.0, 51));
+  records.push_back(test::simulated_gyro("gyro_x", 1e-3, 0.0, 100.0, 1200.0, 52));
+  records.push_back(test::simulated_gyro("accel_x", 1e-3, 0.0, 100.0, 1200.0, 53, "g"));
+  const auto result = study::run_study(records, {});
+  ASSERT_TRUE(result.imu.has_value());
+  EXPECT_EQ(result.imu->gyro_channels, (std::array<std::string, 3>{"gyro_x", "gyro_y", ""}));
+  EXPECT_EQ(result.imu->accel_channels, (std::array<std::string, 3>{"accel_x", "", ""}));
+  const auto& nav = result.imu->result;
+  EXPECT_EQ(nav.terms[1].n_rad_sqrt_s, result.channels[0].fit->coefficients.random_walk.value);
+  EXPECT_EQ(nav.terms[0].n_rad_sqrt_s, result.channels[1].fit->coefficients.random_walk.value);
+  EXPECT_EQ(nav.accel_terms[0].n_m_s_sqrt_s, result.channels[2].fit->coefficients.random_walk.value);
+  EXPECT_EQ(nav.terms[2].n_rad_sqrt_s, 0.0);
+  for (const auto& m : nav.models) EXPECT_NE(m.model, nav::Model::paper);
+  const auto doc = study::study_json(result);
+  EXPECT_EQ(doc["imu_nav"]["accel_channels"][0], "accel_x");
+  records.pop_back();
+  EXPECT_FALSE(study::run_study(records, {}).imu.has_value());
+}
+
 }  // namespace
 }  // namespace imunoise
 
