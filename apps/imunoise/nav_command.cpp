@@ -50,7 +50,11 @@ nav::NavRequest to_request(const NavOptionsCli& o) {
   nav::NavRequest r;
   r.coefficients = {o.q, o.n, o.b, o.k, o.r, o.gm_sigma, o.gm_tau};
   for (const CLI::Option* opt : o.coefficient_options) r.coefficients_given = r.coefficients_given || opt->count() > 0;
-  if (!o.from.empty()) r.fitted_axes.fill(nav::axis_from_fit_file(o.from));
+  if (!o.from.empty()) {
+    const nav::ImuFits imu = nav::imu_from_file(o.from);
+    r.fitted_axes = imu.gyro;
+    r.fitted_accel_axes = imu.accel;
+  }
   const std::string* per_axis[] = {&o.from_x, &o.from_y, &o.from_z};
   for (std::size_t a = 0; a < 3; ++a) {
     if (!per_axis[a]->empty()) r.fitted_axes[a] = nav::axis_from_fit_file(*per_axis[a]);
@@ -129,7 +133,8 @@ void setup_nav(CLI::App& app) {
   cmd->add_option("--accel-bias", o->accel_bias, "constant accelerometer bias, accel unit; enters as an RMS of |bias|");
   cmd->add_option("--accel-units", o->accel_units, "unit of the accelerometer coefficients: m/s^2, g, mg, ug")
       ->capture_default_str();
-  cmd->add_option("--from", o->from, "noise of every axis from FIT.json (`imunoise fit ... --format json`)");
+  cmd->add_option("--from", o->from, "noise of every gyro axis from FIT.json (`imunoise fit ... --format json`), or of the whole IMU from "
+                  "analyze's report.json (each channel on its axis)");
   cmd->add_option("--from-x", o->from_x, "north (x) gyro's FIT.json");
   cmd->add_option("--from-y", o->from_y, "east (y) gyro's FIT.json");
   cmd->add_option("--from-z", o->from_z, "down (z) gyro's FIT.json");

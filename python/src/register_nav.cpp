@@ -42,7 +42,9 @@ py::object nav_call(double N, double B, double K, double Q, double R, double bia
   r.coefficients = {Q, N, B, K, R, gm_sigma, gm_tau};
   r.coefficients_given = N != 0 || B != 0 || K != 0 || Q != 0 || R != 0 || gm_sigma != 0;
   if (py::isinstance<py::dict>(fit)) {
-    r.fitted_axes.fill(from_fit_object(fit, "fit"));
+    const nav::ImuFits imu = nav::imu_from_document(from_python(fit, "fit"), "fit");
+    r.fitted_axes = imu.gyro;
+    r.fitted_accel_axes = imu.accel;
   } else if (!fit.is_none()) {
     const auto list = fit.cast<std::vector<py::object>>();
     if (list.size() != 3) throw InputError("fit must be one fit dict or a list of three (x north, y east, z down)");

@@ -9,6 +9,7 @@
 #include <fmt/core.h>
 
 #include "imunoise/error.hpp"
+#include "imunoise/nav/imu_axes.hpp"
 #include "imunoise/nav/paper.hpp"
 #include "imunoise/nav/schuler.hpp"
 #include "imunoise/units.hpp"
@@ -379,7 +380,10 @@ GyroAxisNoise axis_from_coefficients(const AxisCoefficients& c, const Unit& unit
   return a;
 }
 
-GyroAxisNoise axis_from_fit_json(const nlohmann::json& doc, const std::string& source) {
+namespace {
+
+// The coefficients of a fit document, in SI; its unit must measure `quantity`.
+NoiseCoefficients coefficients_from_fit_json(const nlohmann::json& doc, const std::string& source, Quantity quantity) {
   if (!doc.is_object()) {
     throw InputError(source + ": not an imunoise fit document (a JSON object with 'unit' and 'terms' is expected); "
                      "make one with `imunoise fit FILE --rate HZ --units deg/s --format json -o FIT.json`");
@@ -397,14 +401,16 @@ GyroAxisNoise axis_from_fit_json(const nlohmann::json& doc, const std::string& s
   } catch (const InputError& e) {
     throw InputError(source + ": field 'unit': " + e.what());
   }
-  if (unit.quantity != Quantity::angular_rate) {
-    throw InputError(source + ": the fit's unit '" + unit_name + "' is not an angular rate (" +
-                     std::string(quantity_name(unit.quantity)) +
-                     "): navigation error needs a gyro fit in deg/s, rad/s, deg/h, ...");
+  if (unit.quantity != quantity) {
+    throw InputError(source + ": the fit's unit '" + unit_name + "' is not " +
+                     (quantity == Quantity::angular_rate ? "an angular rate" : "an acceleration") + " (" +
+                     std::string(quantity_name(unit.quantity)) + "): " +
+                     (quantity == Quantity::angular_rate ? "navigation error needs a gyro fit in deg/s, rad/s, deg/h, ..."
+                                                         : "an accelerometer fit is in m/s^2, g, mg or ug"));
   }
   const nlohmann::json& terms = field(doc, "terms", "", source);
-  GyroAxisNoise axis;
-  NoiseCoefficients& c = axis.coefficients;
+  NoiseCoefficients c;
+  c.quantity = quantity;
   auto read = [&](const char* name, Coefficient& out) {
     const nlohmann::json& t = field(terms, name, "terms.", source);
     const nlohmann::json& value = field(t, "value", std::string("terms.") + name + ".", source);
@@ -441,22 +447,83 @@ GyroAxisNoise axis_from_fit_json(const nlohmann::json& doc, const std::string& s
       c.gauss_markov = g;
     }
   }
-  return axis;
+  return c;
 }
 
-GyroAxisNoise axis_from_fit_file(const std::string& path) {
+nlohmann::json read_json_file(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path + ": cannot open the fit file; check the path");
   std::stringstream text;
   text << in.rdbuf();
-  nlohmann::json doc;
   try {
-    doc = nlohmann::json::parse(text.str());
+    return nlohmann::json::parse(text.str());
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(path + ": not JSON (" + std::string(e.what()) +
-                     "); give the output of `imunoise fit ... --format json -o FIT.json`");
+                     "); give the output of `imunoise fit ... --format json -o FIT.json` or analyze's report.json");
   }
-  return axis_from_fit_json(doc, path);
 }
+
+}  // namespace
+
+GyroAxisNoise axis_from_fit_json(const nlohmann::json& doc, const std::string& source) {
+  GyroAxisNoise axis;
+  axis.coefficients = coefficients_from_fit_json(doc, source, Quantity::angular_rate);
+  return axis;
+}
+
+ImuFits imu_from_document(const nlohmann::json& doc, const std::string& source) {
+  ImuFits out;
+  if (!doc.is_object() || !doc.contains("channels")) {
+    out.gyro.fill(axis_from_fit_json(doc, source));
+    return out;
+  }
+  // A study (analyze's report.json): every fitted channel with a unit, gyros and accelerometers
+  // on their axes by the study's rule.
+  std::vector<std::string> gyro_names, accel_names;
+  std::vector<NoiseCoefficients> gyros, accels;
+  for (const auto& ch : doc["channels"]) {
+    if (!ch.is_object() || !ch.contains("fit") || !ch["fit"].is_object() || !ch["fit"].contains("unit")) continue;
+    const std::string name = ch.value("name", std::string());
+    const std::string where = source + ": channel " + name;
+    Unit unit;
+    try {
+      unit = parse_unit(ch["fit"]["unit"].get<std::string>());
+    } catch (const std::exception&) {
+      continue;  // a channel without a unit has no place in the navigation error
+    }
+    if (unit.quantity == Quantity::angular_rate) {
+      gyro_names.push_back(name);
+      gyros.push_back(coefficients_from_fit_json(ch["fit"], where, unit.quantity));
+    } else if (unit.quantity == Quantity::acceleration) {
+      accel_names.push_back(name);
+      accels.push_back(coefficients_from_fit_json(ch["fit"], where, unit.quantity));
+    }
+  }
+  if (gyros.empty()) {
+    throw InputError(source + ": the study has no fitted gyro channel with an angular unit; re-run analyze with "
+                     "--units (e.g. deg/s for the gyros)");
+  }
+  const auto g = channels_on_axes(gyro_names), a = channels_on_axes(accel_names);
+  for (std::size_t i = 0; i < 3; ++i) {
+    out.gyro[i] = GyroAxisNoise{};
+    if (g[i] >= 0) {
+      out.gyro[i]->coefficients = gyros[static_cast<std::size_t>(g[i])];
+      out.gyro_channels[i] = gyro_names[static_cast<std::size_t>(g[i])];
+    }
+    if (a[i] >= 0) {
+      AccelAxisNoise accel;
+      accel.coefficients = accels[static_cast<std::size_t>(a[i])];
+      out.accel[i] = accel;
+      out.accel_channels[i] = accel_names[static_cast<std::size_t>(a[i])];
+    }
+  }
+  return out;
+}
+
+
+
+GyroAxisNoise axis_from_fit_file(const std::string& path) { return axis_from_fit_json(read_json_file(path), path); }
+
+ImuFits imu_from_file(const std::string& path) { return imu_from_document(read_json_file(path), path); }
 
 }  // namespace imunoise::nav

@@ -62,7 +62,25 @@ std::array<AccelAxisNoise, 3> accel_axes_of(const NavRequest& r) {
   axis.coefficients = axis_from_coefficients(r.accel_coefficients, unit, names).coefficients;
   axis.coefficients.quantity = Quantity::acceleration;
   axis.bias_m_s2 = r.accel_bias * unit.to_si;
-  return {axis, axis, axis};
+  const auto& c = r.accel_coefficients;
+  const bool given = c.q != 0 || c.n != 0 || c.b != 0 || c.k != 0 || c.r != 0 || c.gm_sigma != 0;
+  std::array<AccelAxisNoise, 3> axes{axis, axis, axis};
+  bool fitted = false;
+  for (std::size_t a = 0; a < 3; ++a) {
+    if (!r.fitted_accel_axes[a]) continue;
+    fitted = true;
+    axes[a].coefficients = r.fitted_accel_axes[a]->coefficients;
+  }
+  if (fitted && given) {
+    throw InputError(fmt::format("give the accelerometer noise either as coefficients ({}N ...) or from the study "
+                                 "({}), not both", option(r.names, "accel-"), r.fit_option));
+  }
+  if (fitted) {
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (!r.fitted_accel_axes[a]) axes[a].coefficients = NoiseCoefficients{.quantity = Quantity::acceleration};
+    }
+  }
+  return axes;
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <fmt/ranges.h>
 
 #include "imunoise/error.hpp"
+#include "imunoise/nav/imu_axes.hpp"
 #include "imunoise/fit/report.hpp"
 #include "imunoise/nav/navigation.hpp"
 #include "imunoise/nav/report.hpp"
@@ -257,44 +258,13 @@ nlohmann::json davar_json(const Record& record, const preprocess::DavarResult& d
                    "non-stationary with probability < 0.001); stationary: no window flagged"}};
 }
 
-// x, y or z from a channel's name: a word of its own (gyro_x_dps, w_RS_S_y) or its last letter
-// (az); -1 when it says none.
-int axis_of_name(const std::string& name) {
-  auto axis = [](char c) {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return c == 'x' ? 0 : c == 'y' ? 1 : c == 'z' ? 2 : -1;
-  };
-  int found = -1;
-  std::size_t words = 0;
-  for (std::size_t i = 0; i < name.size();) {
-    std::size_t j = i;
-    while (j < name.size() && std::isalnum(static_cast<unsigned char>(name[j]))) ++j;
-    if (j == i + 1 && axis(name[i]) >= 0) {
-      found = axis(name[i]);
-      ++words;
-    }
-    i = std::max(j, i) + 1;
-  }
-  if (words == 1) return found;
-  return name.empty() ? -1 : axis(name.back());
-}
-
-// The channels of one sensor kind on the axes: by name when every name says a distinct axis,
-// otherwise in the order given (at most three).
+// The channels of one sensor kind on the axes (nav/imu_axes.hpp).
 std::array<const ChannelStudy*, 3> on_axes(const std::vector<const ChannelStudy*>& channels) {
+  std::vector<std::string> names;
+  for (const ChannelStudy* ch : channels) names.push_back(ch->record.name);
+  const auto index = nav::channels_on_axes(names);
   std::array<const ChannelStudy*, 3> axes{};
-  bool by_name = channels.size() <= 3;
-  for (const ChannelStudy* ch : channels) {
-    const int a = axis_of_name(ch->record.name);
-    if (a < 0 || axes[static_cast<std::size_t>(a)] != nullptr) {
-      by_name = false;
-      break;
-    }
-    axes[static_cast<std::size_t>(a)] = ch;
-  }
-  if (by_name) return axes;
-  axes = {};
-  for (std::size_t i = 0; i < channels.size() && i < 3; ++i) axes[i] = channels[i];
+  for (std::size_t i = 0; i < 3; ++i) axes[i] = index[i] >= 0 ? channels[static_cast<std::size_t>(index[i])] : nullptr;
   return axes;
 }
 

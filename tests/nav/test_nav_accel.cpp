@@ -15,6 +15,7 @@
 #include "cli/cli_runner.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/nav/navigation.hpp"
+#include "imunoise/nav/report.hpp"
 #include "imunoise/nav/request.hpp"
 #include "imunoise/nav/schuler.hpp"
 #include "imunoise/units.hpp"
@@ -192,6 +193,43 @@ TEST(NavAccelRequest, UnitsAndNamesAsTheEdgeSpellsThem) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("accel_N must be >= 0"), std::string::npos) << e.what();
   }
+}
+
+// A study document (analyze's report.json) gives the whole IMU: gyros and accelerometers by the
+// units of their fits, on their axes by name; a single fit document, the gyros only.
+nlohmann::json fit_doc(const std::string& unit, double n) {
+  nlohmann::json terms;
+  for (const char* t : {"Q", "N", "B", "K", "R"}) terms[t] = {{"value", nullptr}, {"identified", false}};
+  terms["N"] = {{"value", n}, {"identified", true}};
+  return {{"unit", unit}, {"terms", terms}};
+}
+
+TEST(NavAccelFrom, AStudyDocumentGivesEveryChannelItsAxis) {
+  const nlohmann::json study{{"channels",
+                              {{{"name", "acc_y"}, {"fit", fit_doc("m/s^2", 2e-3)}},
+                               {{"name", "gyr_x"}, {"fit", fit_doc("deg/s", 1e-3)}},
+                               {{"name", "acc_x"}, {"fit", fit_doc("mg", 3.0)}},
+                               {{"name", "temp"}, {"fit", fit_doc("input unit", 1.0)}}}}};
+  const ImuFits imu = imu_from_document(study, "report.json");
+  EXPECT_EQ(imu.gyro_channels, (std::array<std::string, 3>{"gyr_x", "", ""}));
+  EXPECT_EQ(imu.accel_channels, (std::array<std::string, 3>{"acc_x", "acc_y", ""}));
+  EXPECT_NEAR(imu.accel[0]->coefficients.random_walk.value, 3e-3 * units::g_to_m_per_s2, 1e-15);
+  EXPECT_DOUBLE_EQ(imu.accel[1]->coefficients.random_walk.value, 2e-3);
+  EXPECT_FALSE(imu.accel[2].has_value());
+  EXPECT_NEAR(imu.gyro[0]->coefficients.random_walk.value, 1e-3 * std::numbers::pi / 180.0, 1e-18);
+  EXPECT_EQ(imu.gyro[1]->coefficients.random_walk.value, 0.0);
+  NavRequest r;
+  r.fitted_axes = imu.gyro;
+  r.fitted_accel_axes = imu.accel;
+  EXPECT_EQ(plan_navigation(r).accel_axes[1].coefficients.random_walk.value, 2e-3);
+  r.accel_coefficients.n = 1.0;
+  EXPECT_THROW(plan_navigation(r), InputError);
+  // One fit document: that gyro on every axis, no accelerometers.
+  const ImuFits one = imu_from_document(fit_doc("deg/s", 1e-3), "fit.json");
+  EXPECT_TRUE(one.gyro[2].has_value());
+  EXPECT_FALSE(one.accel[0].has_value());
+  const nlohmann::json no_gyro{{"channels", {{{"name", "acc_x"}, {"fit", fit_doc("m/s^2", 1e-3)}}}}};
+  EXPECT_THROW(imu_from_document(no_gyro, "report.json"), InputError);
 }
 
 TEST(NavAccelCli, AccelerometerFlagsReachTheModelsAndTheDocument) {

@@ -14,6 +14,8 @@
 //                montecarlo: "runs", "seed", "path_se_m", "east_se_m", "radial_se_m",
 //                            "path_mean_m", "path_mean_se_m", "east_mean_m", "east_mean_se_m";
 //                covariance: "check": {"states", "max_asymmetry", "min_eigenvalue_ratio"}}]}
+#include <array>
+#include <optional>
 #include <string>
 
 #include <nlohmann/json.hpp>
@@ -64,5 +66,16 @@ GyroAxisNoise axis_from_coefficients(const AxisCoefficients& c, const Unit& unit
 /// Reads and parses the file, then axis_from_fit_json; InputError naming the file when it
 /// cannot be read or is not JSON.
 GyroAxisNoise axis_from_fit_file(const std::string& path);
+
+/// The noise of the whole IMU from a document: a gyro fit (the same on every gyro axis, no
+/// accelerometers) or analyze's report.json (each fitted channel with a unit on its axis by
+/// imu_axes.hpp's rule: gyros by angular-rate units, accelerometers by acceleration units).
+struct ImuFits {
+  std::array<std::optional<GyroAxisNoise>, 3> gyro;
+  std::array<std::optional<AccelAxisNoise>, 3> accel;
+  std::array<std::string, 3> gyro_channels, accel_channels;  ///< the study's channel per axis
+};
+ImuFits imu_from_document(const nlohmann::json& document, const std::string& source);
+ImuFits imu_from_file(const std::string& path);
 
 }  // namespace imunoise::nav

@@ -21,6 +21,8 @@ struct NavRequest {
   /// Every accelerometer axis's coefficients, in `accel_units` (0: absent; N is the velocity
   /// random walk, K the acceleration random walk, Q the velocity quantization).
   AxisCoefficients accel_coefficients;
+  /// Accelerometer fits per axis (from analyze's report.json); not beside accel_coefficients.
+  std::array<std::optional<AccelAxisNoise>, 3> fitted_accel_axes;
   double accel_bias = 0.0;            ///< constant accelerometer bias on every axis (`accel_units`)
   std::string accel_units = "m/s^2";  ///< m/s^2, g, mg, ug
   double bias = 0.0;              ///< constant drift on every axis (`units`), with either
