@@ -14,6 +14,7 @@
 #include "imunoise/comma_list.hpp"
 #include "imunoise/confidence/interval.hpp"
 #include "imunoise/error.hpp"
+#include "imunoise/nav/navigation.hpp"
 #include "imunoise/export/export_model.hpp"
 #include "imunoise/estimator.hpp"
 #include "imunoise/fit/report.hpp"
@@ -41,6 +42,7 @@ struct AnalyzeOptionsCli {
   std::string estimators = "oadev";
   double ci_level = 0.683;
   double nav_hours = 1.0;
+  std::string nav_models = study::StudyOptions{}.nav_models;
   bool keep_going = false;
   bool quiet = false;
   unsigned threads = 0;
@@ -63,6 +65,8 @@ void run_analyze(const AnalyzeOptionsCli& o) {
   if (!o.spec.empty()) so.spec = resolve_spec(o.spec);
   so.geometry = o.geometry;
   so.nav_hours = o.nav_hours;
+  so.nav_models = o.nav_models;
+  (void)nav::parse_models(so.nav_models);  // a bad list fails before the work
   so.keep_going = o.keep_going;
   if (!o.title.empty()) so.title = o.title;
   Progress progress(o.quiet);
@@ -158,6 +162,9 @@ void setup_analyze(CLI::App& app) {
   command->add_option("--nav-hours", o->nav_hours, "duration of the navigation-error curves (h)")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
+  command->add_option("--nav-models", o->nav_models,
+                      "navigation models: schuler, covariance, montecarlo, paper (the paper's eq. 6), comma list")
+      ->capture_default_str();
   command->add_flag("--keep-going", o->keep_going,
                     "an input or channel that fails is reported and the others are studied");
   command->add_flag("-q,--quiet", o->quiet, "no progress on standard error");

@@ -118,7 +118,7 @@ study::Record make_record(std::vector<double> rate, double rate_hz, const std::s
 py::object analyze(const py::object& channels, double rate, const py::object& units,
                    const py::object& names, const std::optional<std::string>& spec,
                    const std::optional<std::string>& geometry,
-                   double nav_hours, const py::object& estimators, bool keep_going,
+                   double nav_hours, const std::string& nav_models, const py::object& estimators, bool keep_going,
                    const py::object& output_dir, bool force) {
   checked_rate_hz(rate);
   if (!(nav_hours > 0.0) || !std::isfinite(nav_hours)) {
@@ -146,6 +146,7 @@ py::object analyze(const py::object& channels, double rate, const py::object& un
   if (spec && !spec->empty()) so.spec = resolve_spec(*spec);
   so.geometry = geometry.value_or("");
   so.nav_hours = nav_hours;
+  so.nav_models = nav_models;
   so.keep_going = keep_going;
 
   std::vector<study::Record> records;
@@ -188,9 +189,9 @@ py::object analyze(const py::object& channels, double rate, const py::object& un
 void register_study(py::module_& m) {
   m.def("analyze", &analyze, py::arg("channels"), py::arg("rate"), py::arg("units") = py::none(),
         py::arg("names") = py::none(), py::arg("spec") = py::none(), py::arg("geometry") = py::none(),
-        py::arg("nav_hours") = 1.0, py::arg("estimators") = py::none(), py::arg("keep_going") = false,
+        py::arg("nav_hours") = 1.0, py::arg("nav_models") = "schuler,covariance", py::arg("estimators") = py::none(), py::arg("keep_going") = false,
         py::arg("output_dir") = py::none(), py::arg("force") = false,
-        R"(analyze(channels, rate, units=None, names=None, spec=None, geometry=None, nav_hours=1.0,
+        R"(analyze(channels, rate, units=None, names=None, spec=None, geometry=None, nav_hours=1.0, nav_models='schuler,covariance',
         estimators=None, keep_going=False, output_dir=None, force=False) -> dict
 
 The whole study of rate records: the document `imunoise analyze` writes as report.json

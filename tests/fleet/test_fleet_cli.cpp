@@ -195,7 +195,7 @@ TEST(FleetCli, NavigationErrorPerSensorAndItsDistribution) {
     const std::string fit_file = out_dir.file("fit" + std::to_string(i) + ".json");
     std::ofstream(fit_file) << fit.dump();
     const auto nav = run_cli({"nav", "--from", fit_file, "--hours", "1", "--latitude", "58.5", "--step", "60",
-                              "--dt", "1", "--model", "paper,schuler,covariance", "--format", "json"});
+                              "--dt", "1", "--model", "schuler,covariance", "--format", "json"});
     ASSERT_EQ(nav.exit_code, 0) << nav.err;
     const auto expected = nlohmann::json::parse(nav.out);
     ASSERT_EQ(fit["nav"]["models"].size(), expected["models"].size());

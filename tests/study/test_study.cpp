@@ -111,7 +111,7 @@ TEST(Study, DocumentHoldsTheLibrarysNumbers) {
     no.step_s = 60.0;
     no.dt_s = 1.0;
     no.latitude_rad = 58.5 * M_PI / 180.0;
-    no.models = nav::parse_models("paper,schuler,covariance");
+    no.models = nav::parse_models("schuler,covariance");
     EXPECT_EQ(ch["nav"], nav::report_json(nav::navigation_error(no)));
   }
 }
