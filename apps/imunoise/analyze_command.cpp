@@ -22,6 +22,7 @@
 #include "imunoise/spec/spec.hpp"
 #include "imunoise/load/load.hpp"
 #include "imunoise/study/study.hpp"
+#include "imunoise/study/summary.hpp"
 #include "imunoise/study/write.hpp"
 #include "fit_options.hpp"
 #include "input_options.hpp"
@@ -45,6 +46,7 @@ struct AnalyzeOptionsCli {
   std::string nav_models = study::StudyOptions{}.nav_models;
   bool keep_going = false;
   bool quiet = false;
+  bool verbose = false;
   unsigned threads = 0;
   std::string title;
   FilterExportOptions filter;
@@ -125,8 +127,10 @@ void run_analyze(const AnalyzeOptionsCli& o) {
       fmt::print("export: {} ({})\n", e["path"].get<std::string>(), e["target"].get<std::string>());
     }
   }
+  // One line a channel; the diagnostics are in the report (and here with --verbose).
   for (const auto& ch : result.channels) {
-    if (!ch.error.empty()) fmt::print(stderr, "imunoise: warning: {} failed: {}\n", ch.record.name, ch.error);
+    fmt::print(stderr, "imunoise: {}\n", study::channel_summary(ch));
+    if (!o.verbose) continue;
     for (const auto& w : ch.warnings) fmt::print(stderr, "imunoise: warning: {}: {}\n", ch.record.name, w);
   }
   for (const auto& n : written.notes) fmt::print(stderr, "imunoise: note: {}\n", n);
@@ -168,6 +172,9 @@ void setup_analyze(CLI::App& app) {
   command->add_flag("--keep-going", o->keep_going,
                     "an input or channel that fails is reported and the others are studied");
   command->add_flag("-q,--quiet", o->quiet, "no progress on standard error");
+  command->add_flag("-v,--verbose", o->verbose,
+                    "every diagnostic of every channel on standard error (by default one line a channel; "
+                    "the report holds them all)");
   command->add_option("--threads", o->threads, "worker threads (0: all cores)");
   command->add_option("--title", o->title, "title of the report");
   add_filter_export_options(*command, o->filter);

@@ -55,6 +55,28 @@ TEST(CliAnalyze, WritesTheReportOfEveryColumn) {
   EXPECT_EQ(forced.exit_code, 0) << forced.err;
 }
 
+// The terminal gets one line a channel (what was fitted, how many diagnostics); --verbose adds
+// every diagnostic, which the report holds in any case.
+TEST(CliAnalyze, OneLineAChannelAndEveryDiagnosticWithVerbose) {
+  TempDir dir;
+  const auto file = dir.write("imu.csv", csv_record(20000, 100.0, 3));
+  const auto r = run_cli({"analyze", file, "--time-column", "t", "--units", "deg/s", "-o", dir.file("a"), "-q"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  for (const char* name : {"gx", "gy"}) {
+    EXPECT_NE(r.err.find(std::string("imunoise: ") + name + ": fitted N"), std::string::npos) << r.err;
+  }
+  EXPECT_EQ(r.err.find("imunoise: warning:"), std::string::npos) << r.err;
+  const auto doc = nlohmann::json::parse(slurp(dir.file("a") + "/report.json"));
+  std::size_t diagnostics = 0;
+  for (const auto& ch : doc["channels"]) diagnostics += ch["warnings"].size();
+  const auto v = run_cli({"analyze", file, "--time-column", "t", "--units", "deg/s", "-o", dir.file("b"), "-q",
+                          "--verbose"});
+  ASSERT_EQ(v.exit_code, 0) << v.err;
+  std::size_t printed = 0;
+  for (std::size_t at = 0; (at = v.err.find("imunoise: warning:", at)) != std::string::npos; ++at) ++printed;
+  EXPECT_EQ(printed, diagnostics) << v.err;
+}
+
 // An existing report is refused before any input is read or studied: with a broken input the
 // refusal, not the input's error, is what the user sees (no minutes of work thrown away).
 TEST(CliAnalyze, ExistingReportIsRefusedBeforeTheWork) {
