@@ -54,6 +54,7 @@ nav::NavRequest to_request(const NavOptionsCli& o) {
     const nav::ImuFits imu = nav::imu_from_file(o.from);
     r.fitted_axes = imu.gyro;
     r.fitted_accel_axes = imu.accel;
+    r.measured_s = imu.measured_s;
   }
   const std::string* per_axis[] = {&o.from_x, &o.from_y, &o.from_z};
   for (std::size_t a = 0; a < 3; ++a) {

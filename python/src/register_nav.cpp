@@ -45,6 +45,7 @@ py::object nav_call(double N, double B, double K, double Q, double R, double bia
     const nav::ImuFits imu = nav::imu_from_document(from_python(fit, "fit"), "fit");
     r.fitted_axes = imu.gyro;
     r.fitted_accel_axes = imu.accel;
+    r.measured_s = imu.measured_s;
   } else if (!fit.is_none()) {
     const auto list = fit.cast<std::vector<py::object>>();
     if (list.size() != 3) throw InputError("fit must be one fit dict or a list of three (x north, y east, z down)");

@@ -1,7 +1,10 @@
 #include "imunoise/nav/navigation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
+
+#include <fmt/core.h>
 
 #include "imunoise/error.hpp"
 #include "imunoise/nav/models.hpp"
@@ -260,6 +263,17 @@ NavResult navigation_error(const NavOptions& options) {
     }
   }
   r.outage = outage_errors(options, r.terms, r.accel_terms);
+  if (!options.outage_s.empty() && !accelerometers) {
+    r.notes.push_back("no accelerometer noise given: the outage errors are the gyros' alone (give --accel-N ... or "
+                      "--from an analyze report.json with accelerometer channels)");
+  }
+  double longest = options.duration_s;
+  for (const double t : options.outage_s) longest = std::max(longest, t);
+  if (options.measured_s > 0.0 && longest > options.measured_s * (1.0 + 1e-9)) {
+    r.notes.push_back(fmt::format("the noise was measured on {:.6g} s of record and the navigation error runs to "
+                                  "{:.6g} s: beyond the record the long-term terms (B, K, R, GM) are extrapolated, "
+                                  "not measured", options.measured_s, longest));
+  }
   return r;
 }
 

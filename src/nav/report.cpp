@@ -471,10 +471,27 @@ GyroAxisNoise axis_from_fit_json(const nlohmann::json& doc, const std::string& s
   return axis;
 }
 
+namespace {
+
+// n_samples / rate_hz of a fit document, 0 when it does not say.
+double record_seconds(const nlohmann::json& fit) {
+  if (!fit.is_object() || !fit.contains("n_samples") || !fit.contains("rate_hz")) return 0.0;
+  if (!fit["n_samples"].is_number() || !fit["rate_hz"].is_number()) return 0.0;
+  const double rate = fit["rate_hz"].get<double>();
+  return rate > 0.0 ? fit["n_samples"].get<double>() / rate : 0.0;
+}
+
+void shortest(double& current, double seconds) {
+  if (seconds > 0.0 && (current == 0.0 || seconds < current)) current = seconds;
+}
+
+}  // namespace
+
 ImuFits imu_from_document(const nlohmann::json& doc, const std::string& source) {
   ImuFits out;
   if (!doc.is_object() || !doc.contains("channels")) {
     out.gyro.fill(axis_from_fit_json(doc, source));
+    out.measured_s = record_seconds(doc);
     return out;
   }
   // A study (analyze's report.json): every fitted channel with a unit, gyros and accelerometers
@@ -490,6 +507,9 @@ ImuFits imu_from_document(const nlohmann::json& doc, const std::string& source) 
       unit = parse_unit(ch["fit"]["unit"].get<std::string>());
     } catch (const std::exception&) {
       continue;  // a channel without a unit has no place in the navigation error
+    }
+    if (unit.quantity == Quantity::angular_rate || unit.quantity == Quantity::acceleration) {
+      shortest(out.measured_s, record_seconds(ch["fit"]));
     }
     if (unit.quantity == Quantity::angular_rate) {
       gyro_names.push_back(name);

@@ -99,6 +99,7 @@ NavOptions plan_navigation(const NavRequest& r) {
   o.axes = axes_of(r, unit);
   o.accel_axes = accel_axes_of(r);
   o.outage_s = r.outage_s;
+  o.measured_s = r.measured_s;
   o.initial_pos_m = r.initial_pos_m;
   o.initial_vel_m_s = r.initial_vel_m_s;
   o.initial_att_rad = r.initial_att_deg * std::numbers::pi / 180.0;

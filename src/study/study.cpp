@@ -273,15 +273,27 @@ nav::NavOptions nav_options(const StudyOptions& options, const NoiseCoefficients
 // The whole IMU (study.hpp, Study::imu).
 void study_imu(Study& study) {
   std::vector<const ChannelStudy*> gyros, accels;
+  std::vector<std::string> unitless;
   for (const auto& ch : study.channels) {
+    if (ch.fit && !ch.record.unit_given) unitless.push_back(ch.record.name);
     if (!ch.fit || !ch.record.unit_given) continue;
     if (ch.fit->coefficients.quantity == Quantity::angular_rate) gyros.push_back(&ch);
     if (ch.fit->coefficients.quantity == Quantity::acceleration) accels.push_back(&ch);
   }
-  if (gyros.empty() || accels.empty()) return;
+  if (gyros.empty() || accels.empty()) {
+    if (!unitless.empty() && (!gyros.empty() || !accels.empty())) {
+      study.notes.push_back(fmt::format("{} without a unit: left out of the whole IMU's navigation error (give "
+                                        "--units, e.g. deg/s for gyros and g or m/s^2 for accelerometers)",
+                                        fmt::join(unitless, ", ")));
+    }
+    return;
+  }
   const auto g = on_axes(gyros), a = on_axes(accels);
   nav::NavOptions o = nav_options(study.options, NoiseCoefficients{});
   Study::ImuNavigation imu;
+  for (const auto* ch : gyros) o.measured_s = o.measured_s == 0.0 ? ch->record.n_samples / ch->record.rate_hz
+                                                                  : std::min(o.measured_s, ch->record.n_samples / ch->record.rate_hz);
+  for (const auto* ch : accels) o.measured_s = std::min(o.measured_s, ch->record.n_samples / ch->record.rate_hz);
   for (std::size_t i = 0; i < 3; ++i) {
     o.axes[i] = nav::GyroAxisNoise{};
     if (g[i]) {

@@ -141,6 +141,28 @@ TEST(NavBudget, CovarianceSharesAreEachTermAloneOverTheWhole) {
   EXPECT_NEAR(c.budget[2].second.back(), r2, 1e-9);
 }
 
+// What the answer cannot support is said: a gyro-only outage, a horizon beyond the record.
+TEST(NavOutage, NotesSayWhatTheAnswerLeavesOut) {
+  NavOptions o = outage({10, 1200});
+  o.axes[1].coefficients.random_walk = present(1e-5);
+  o.measured_s = 900.0;
+  const NavResult r = navigation_error(o);
+  auto said = [&](const std::string& text) {
+    for (const auto& n : r.notes) {
+      if (n.find(text) != std::string::npos) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(said("the outage errors are the gyros' alone"));
+  EXPECT_TRUE(said("measured on 900 s of record and the navigation error runs to 1200 s"));
+  o.measured_s = 7200.0;
+  o.accel_axes[0].bias_m_s2 = 1e-3;
+  for (const auto& n : navigation_error(o).notes) {
+    EXPECT_EQ(n.find("extrapolated"), std::string::npos) << n;
+    EXPECT_EQ(n.find("gyros' alone"), std::string::npos) << n;
+  }
+}
+
 TEST(NavOutage, BadHorizonsAreRefused) {
   NavOptions o = outage({0.5});
   EXPECT_THROW(outage_errors(o, {}, {}), InputError);

@@ -120,6 +120,9 @@ struct NavOptions {
   /// (N in deg/sqrt(s) read as deg/s), east axis.
   std::optional<double> paper_sigma_eps_rad_s;
   EarthModel earth;
+  /// Length (s) of the shortest record the noise was measured on (0: unknown): a horizon beyond
+  /// it extrapolates the long-term terms, which a note says.
+  double measured_s = 0.0;
   /// GNSS outage horizons (s; empty: none) and the 1-sigma errors the aiding left at the
   /// outage start, per axis (outage.hpp).
   std::vector<double> outage_s;

@@ -74,6 +74,7 @@ struct ImuFits {
   std::array<std::optional<GyroAxisNoise>, 3> gyro;
   std::array<std::optional<AccelAxisNoise>, 3> accel;
   std::array<std::string, 3> gyro_channels, accel_channels;  ///< the study's channel per axis
+  double measured_s = 0.0;  ///< the shortest record the fits come from (n_samples / rate_hz; 0: unknown)
 };
 ImuFits imu_from_document(const nlohmann::json& document, const std::string& source);
 ImuFits imu_from_file(const std::string& path);

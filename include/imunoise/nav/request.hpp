@@ -29,6 +29,7 @@ struct NavRequest {
   std::string units = "deg/s";    ///< unit of the coefficients, the bias and sigma_eps
   double hours = 1.0;             ///< operating time (h)
   std::vector<double> outage_s;   ///< GNSS outage horizons (s)
+  double measured_s = 0.0;        ///< the record length behind the fits (s; 0: unknown)
   double initial_pos_m = 0.0;     ///< 1-sigma errors at the outage start, per axis
   double initial_vel_m_s = 0.0;
   double initial_att_deg = 0.0;
