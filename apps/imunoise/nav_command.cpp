@@ -30,7 +30,7 @@ struct NavOptionsCli {
   std::string from, from_x, from_y, from_z;
   double hours = 1.0;
   std::vector<double> outage_s;
-  double initial_pos_m = 0.0, initial_vel_m_s = 0.0, initial_att_deg = 0.0;
+  double initial_pos_m = 0.0, initial_vel_m_s = 0.0, initial_att_deg = 0.0, align_s = 0.0;
   double latitude_deg = 58.5;
   double velocity = 0.0;
   double step_s = 60.0;
@@ -70,6 +70,7 @@ nav::NavRequest to_request(const NavOptionsCli& o) {
   r.initial_pos_m = o.initial_pos_m;
   r.initial_vel_m_s = o.initial_vel_m_s;
   r.initial_att_deg = o.initial_att_deg;
+  r.align_s = o.align_s;
   r.latitude_deg = o.latitude_deg;
   r.velocity_m_s = o.velocity;
   r.step_s = o.step_s;
@@ -144,6 +145,9 @@ void setup_nav(CLI::App& app) {
                   "GNSS outage horizons (s), comma list (10,30,60,300): position, velocity and attitude error from "
                   "an aided start, with each term's share")
       ->delimiter(',');
+  cmd->add_option("--align", o->align_s,
+                  "stationary alignment before navigation (s): levelling and gyrocompassing from the same noise, "
+                  "in the covariance model and the outages (default 0: a perfect start)");
   cmd->add_option("--initial-pos-m", o->initial_pos_m, "1-sigma position error per axis at the outage start (m)");
   cmd->add_option("--initial-vel-m-s", o->initial_vel_m_s, "1-sigma velocity error per axis at the outage start (m/s)");
   cmd->add_option("--initial-att-deg", o->initial_att_deg, "1-sigma attitude error per axis at the outage start (deg)");

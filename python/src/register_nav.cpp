@@ -34,7 +34,7 @@ py::object nav_call(double N, double B, double K, double Q, double R, double bia
                     double accel_N, double accel_B, double accel_K, double accel_Q, double accel_R, double accel_bias,
                     double accel_gm_sigma, double accel_gm_tau, const std::string& accel_units,
                     const std::vector<double>& outage, double initial_pos_m, double initial_vel_m_s,
-                    double initial_att_deg) {
+                    double initial_att_deg, double align) {
   nav::NavRequest r;
   r.names = {"", '_'};
   r.fit_option = "fit=";
@@ -61,6 +61,7 @@ py::object nav_call(double N, double B, double K, double Q, double R, double bia
   r.initial_pos_m = initial_pos_m;
   r.initial_vel_m_s = initial_vel_m_s;
   r.initial_att_deg = initial_att_deg;
+  r.align_s = align;
   r.latitude_deg = latitude;
   r.velocity_m_s = velocity;
   r.step_s = step;
@@ -107,14 +108,14 @@ void register_nav(py::module_& m) {
         py::arg("accel_K") = 0.0, py::arg("accel_Q") = 0.0, py::arg("accel_R") = 0.0, py::arg("accel_bias") = 0.0,
         py::arg("accel_gm_sigma") = 0.0, py::arg("accel_gm_tau") = 0.0, py::arg("accel_units") = "m/s^2",
         py::arg("outage") = std::vector<double>{}, py::arg("initial_pos_m") = 0.0, py::arg("initial_vel_m_s") = 0.0,
-        py::arg("initial_att_deg") = 0.0,
+        py::arg("initial_att_deg") = 0.0, py::arg("align") = 0.0,
         "Navigation error growth (RMS latitude, longitude, path, radial vs time) from gyro noise given in `units` "
         "(N unit*sqrt(s), B unit, K unit/sqrt(s), Q unit*s, R unit/s, bias unit) or fit=imunoise.fit(...) dict "
         "(or a list of three: x north, y east, z down), and accelerometer noise accel_N (velocity random walk), "
         "accel_B, accel_K, accel_Q, accel_R, accel_bias, accel_gm_sigma/accel_gm_tau in accel_units (m/s^2, g, mg, "
         "ug; N in accel_units*sqrt(s)), the same on every axis. outage=[10, 30, 60, 300] (s) adds the GNSS-outage "
         "errors from an aided start (initial_pos_m, initial_vel_m_s, initial_att_deg: 1-sigma per axis) with each "
-        "term's share, as the list 'outage'. model: 'paper', 'schuler', 'covariance', 'montecarlo' "
+        "term's share, as the list 'outage'; align=SECONDS a stationary alignment first (covariance model). model: 'paper', 'schuler', 'covariance', 'montecarlo' "
         "(comma string or list); signed_constants: the Monte Carlo takes bias and R as signed values, the same in "
         "every run (default: random constants per axis with that standard deviation, as the covariance). Returns the dict of `imunoise nav --format json`; each model's series "
         "(t_s, lat_deg, lon_deg, path_m, north_m, east_m, radial_m, ...) are NumPy arrays.");

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <unsupported/Eigen/MatrixFunctions>
 
@@ -246,6 +247,35 @@ DiscreteModel discrete_model(const NavOptions& o, const std::array<GyroTerms, 3>
   }
   d.p0 = p0;
   return d;
+}
+
+Eigen::MatrixXd aligned_p0(const NavOptions& o, const DiscreteModel& d) {
+  if (!(o.align_s > 0.0)) return d.p0;
+  const double r = o.earth.radius_m, w0 = w0_of(o);
+  const Eigen::Index n = d.phi.rows();
+  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(4, n);
+  for (int i = 0; i < 4; ++i) h(i, i) = 1.0;
+  Eigen::Matrix4d noise = Eigen::Matrix4d::Zero();
+  const double pos = 0.01 / r, vel = 0.001 / (r * w0);  // 1 cm, 1 mm/s in the states' units
+  noise.diagonal() << pos * pos, pos * pos, vel * vel, vel * vel;
+  const Eigen::MatrixXd eye = Eigen::MatrixXd::Identity(n, n);
+  Eigen::MatrixXd p = d.p0;
+  // What the alignment starts from: a coarse attitude (1 deg of tilt, 5 deg of heading), which
+  // the updates then refine; the sensor errors at their priors.
+  const double deg = std::numbers::pi / 180.0;
+  p(4, 4) += deg * deg;
+  p(5, 5) += deg * deg;
+  p(6, 6) += 25.0 * deg * deg;
+  const long steps = std::max(1L, std::lround(o.align_s / o.dt_s));
+  for (long k = 0; k < steps; ++k) {
+    p = d.phi * p * d.phi.transpose() + d.qd;
+    const Eigen::Matrix4d s = h * p * h.transpose() + noise;
+    const Eigen::MatrixXd gain = p * h.transpose() * s.inverse();
+    const Eigen::MatrixXd a = eye - gain * h;
+    p = a * p * a.transpose() + gain * noise * gain.transpose();
+    p = 0.5 * (p + p.transpose()).eval();
+  }
+  return p;
 }
 
 // (phi_m, q_m) = m steps of x <- phi x + w, cov w = qd, by binary powers; each product is a

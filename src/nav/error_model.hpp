@@ -94,6 +94,11 @@ struct DiscreteModel {
 DiscreteModel discrete_model(const NavOptions& options, const std::array<GyroTerms, 3>& gyro,
                              const std::array<AccelTerms, 3>& accel);
 
+/// The covariance after a stationary alignment of options.align_s seconds: from d.p0,
+/// propagated step by step with zero-position and zero-velocity updates (th_N th_E w_N w_E
+/// measured with 1 cm and 1 mm/s noise; Joseph form). d.p0 itself when align_s is 0.
+Eigen::MatrixXd aligned_p0(const NavOptions& options, const DiscreteModel& d);
+
 /// (phi_m, q_m) = m steps of x <- phi x + w, cov w = qd, by binary powers (log2 m products);
 /// each product is a sum of positive semi-definite terms, symmetrized.
 void compose(const Eigen::MatrixXd& phi, const Eigen::MatrixXd& qd, long m, Eigen::MatrixXd& phi_m,

@@ -129,9 +129,9 @@ struct Propagated {
 Propagated propagate(const NavOptions& o, const detail::DiscreteModel& d, const std::vector<double>& t_s) {
   // The discrete model is exact at dt; between reported times its m-fold composition
   // (Phi^m, sum_j Phi^j Qd Phi^j') is formed by doubling, which is the same propagation in
-  // log2(m) products instead of m.
+  // log2(m) products instead of m. Navigation starts after the alignment, if any.
   Propagated out;
-  Eigen::MatrixXd p = d.p0;
+  Eigen::MatrixXd p = detail::aligned_p0(o, d);
   long k = 0;
   long cached_m = -1;
   Eigen::MatrixXd phi_m, q_m;

@@ -9,6 +9,7 @@
 #include "imunoise/error.hpp"
 #include "imunoise/nav/models.hpp"
 #include "imunoise/nav/outage.hpp"
+#include "error_model.hpp"
 
 namespace imunoise::nav {
 
@@ -159,6 +160,9 @@ bool NavOptions::IsValid(std::string* why) const {
   if (paper_sigma_eps_rad_s && (!(*paper_sigma_eps_rad_s >= 0.0) || !std::isfinite(*paper_sigma_eps_rad_s))) {
     return fail("--sigma-eps must be >= 0");
   }
+  if (!(align_s >= 0.0) || !std::isfinite(align_s) || align_s > 86400.0) {
+    return fail("the alignment time must be within [0, 86400] s (--align SECONDS)");
+  }
   for (const double v : {initial_pos_m, initial_vel_m_s, initial_att_rad}) {
     if (!(v >= 0.0) || !std::isfinite(v)) {
       return fail("the initial errors at the outage start must be >= 0 and finite (--initial-pos-m, "
@@ -263,6 +267,20 @@ NavResult navigation_error(const NavOptions& options) {
     }
   }
   r.outage = outage_errors(options, r.terms, r.accel_terms);
+  if (options.align_s > 0.0) {
+    const Eigen::MatrixXd p = detail::aligned_p0(options, detail::discrete_model(options, r.terms, r.accel_terms));
+    r.alignment_rad = std::array<double, 3>{std::sqrt(p(4, 4)), std::sqrt(p(5, 5)), std::sqrt(p(6, 6))};
+    bool others = false;
+    for (Model m : options.models) others = others || (m != Model::covariance);
+    if (others) {
+      r.notes.push_back(fmt::format("the {:.6g} s alignment is in the covariance model and the outages; the other "
+                                    "models start perfectly aligned", options.align_s));
+    }
+    if (!options.outage_s.empty()) {
+      r.notes.push_back("with an alignment, each term's budget share is that term aligned alone (the alignment's "
+                        "gain depends on every term, so the shares are approximate)");
+    }
+  }
   if (!options.outage_s.empty() && !accelerometers) {
     r.notes.push_back("no accelerometer noise given: the outage errors are the gyros' alone (give --accel-N ... or "
                       "--from an analyze report.json with accelerometer channels)");

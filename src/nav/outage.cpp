@@ -22,12 +22,13 @@ std::vector<detail::NavMatrix> propagate(const NavOptions& o, const std::array<G
   const detail::DiscreteModel d = detail::discrete_model(o, gyro, accel);
   const double r = o.earth.radius_m;
   const double w0 = schuler::frequency_rad_s(o.earth.gravity_m_s2, r);
-  Eigen::MatrixXd p = d.p0;
+  Eigen::MatrixXd p = detail::aligned_p0(o, d);
+  // The initial errors the aiding left, on top of what an alignment left (if any).
   for (int i = 0; i < 2; ++i) {
-    p(i, i) = (pos_m / r) * (pos_m / r);
-    p(2 + i, 2 + i) = (vel_m_s / (r * w0)) * (vel_m_s / (r * w0));
+    p(i, i) += (pos_m / r) * (pos_m / r);
+    p(2 + i, 2 + i) += (vel_m_s / (r * w0)) * (vel_m_s / (r * w0));
   }
-  for (int i = 4; i < 7; ++i) p(i, i) = att_rad * att_rad;
+  for (int i = 4; i < 7; ++i) p(i, i) += att_rad * att_rad;
   std::vector<detail::NavMatrix> out;
   long k = 0;
   Eigen::MatrixXd phi_m, q_m;

@@ -166,6 +166,12 @@ nlohmann::json report_json(const NavResult& r) {
                      {"longitude_defined", r.longitude_defined},
                      {"units", {{"t", "s"}, {"lat", "deg"}, {"lon", "deg"}, {"path", "m"}, {"radial", "m"}}},
                      {"models", std::move(models)}};
+  if (r.alignment_rad) {
+    doc["alignment"] = {{"time_s", o.align_s},
+                        {"tilt_north_deg", number((*r.alignment_rad)[0] * kDeg)},
+                        {"tilt_east_deg", number((*r.alignment_rad)[1] * kDeg)},
+                        {"heading_deg", number((*r.alignment_rad)[2] * kDeg)}};
+  }
   if (!r.outage.empty()) {
     nlohmann::json outage = nlohmann::json::array();
     for (const OutagePoint& p : r.outage) {
@@ -269,6 +275,11 @@ std::string report_table(const NavResult& r) {
     out += "\n";
   }
   for (const auto& n : r.notes) out += "# note: " + n + "\n";
+  if (r.alignment_rad) {
+    out += fmt::format("# alignment of {} s: tilt {} / {} deg (about north / east), heading {} deg (1-sigma)\n",
+                       num(o.align_s), num((*r.alignment_rad)[0] * kDeg, 4), num((*r.alignment_rad)[1] * kDeg, 4),
+                       num((*r.alignment_rad)[2] * kDeg, 4));
+  }
   if (!r.outage.empty()) {
     out += fmt::format("# GNSS outage (from an aided start: 1-sigma position {} m, velocity {} m/s, attitude {} deg per axis)\n",
                        num(o.initial_pos_m), num(o.initial_vel_m_s), num(o.initial_att_rad * kDeg));

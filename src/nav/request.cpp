@@ -77,7 +77,9 @@ std::array<AccelAxisNoise, 3> accel_axes_of(const NavRequest& r) {
   }
   if (fitted) {
     for (std::size_t a = 0; a < 3; ++a) {
-      if (!r.fitted_accel_axes[a]) axes[a].coefficients = NoiseCoefficients{.quantity = Quantity::acceleration};
+      if (r.fitted_accel_axes[a]) continue;
+      axes[a].coefficients = NoiseCoefficients{};
+      axes[a].coefficients.quantity = Quantity::acceleration;
     }
   }
   return axes;
@@ -100,6 +102,7 @@ NavOptions plan_navigation(const NavRequest& r) {
   o.accel_axes = accel_axes_of(r);
   o.outage_s = r.outage_s;
   o.measured_s = r.measured_s;
+  o.align_s = r.align_s;
   o.initial_pos_m = r.initial_pos_m;
   o.initial_vel_m_s = r.initial_vel_m_s;
   o.initial_att_rad = r.initial_att_deg * std::numbers::pi / 180.0;

@@ -120,6 +120,13 @@ struct NavOptions {
   /// (N in deg/sqrt(s) read as deg/s), east axis.
   std::optional<double> paper_sigma_eps_rad_s;
   EarthModel earth;
+  /// Stationary alignment before navigation (s; 0: a perfect start, the default): the
+  /// covariance model holds position and velocity at zero for align_s seconds (zero-velocity
+  /// and zero-position updates, a Kalman filter on the same error model) and navigates from the
+  /// posterior: levelling by the accelerometers, gyrocompassing by the Earth rate, with the
+  /// correlations between the attitude and the sensor errors that alignment leaves (an
+  /// accelerometer bias is then cancelled by the tilt it caused). Covariance model and outages only.
+  double align_s = 0.0;
   /// Length (s) of the shortest record the noise was measured on (0: unknown): a horizon beyond
   /// it extrapolates the long-term terms, which a note says.
   double measured_s = 0.0;
@@ -195,6 +202,9 @@ struct NavResult {
   bool longitude_defined = true;
   std::vector<double> t_s;                 ///< reported times
   std::vector<ModelSeries> models;         ///< in the order asked
+  /// The attitude errors (1-sigma, rad) left by the alignment (align_s > 0): tilt about north and
+  /// east, heading.
+  std::optional<std::array<double, 3>> alignment_rad;
   /// The outage errors at options.outage_s (outage.hpp), when asked.
   std::vector<OutagePoint> outage;
 };

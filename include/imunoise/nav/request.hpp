@@ -30,6 +30,7 @@ struct NavRequest {
   double hours = 1.0;             ///< operating time (h)
   std::vector<double> outage_s;   ///< GNSS outage horizons (s)
   double measured_s = 0.0;        ///< the record length behind the fits (s; 0: unknown)
+  double align_s = 0.0;           ///< stationary alignment before navigation (s; 0: none)
   double initial_pos_m = 0.0;     ///< 1-sigma errors at the outage start, per axis
   double initial_vel_m_s = 0.0;
   double initial_att_deg = 0.0;
