@@ -167,7 +167,7 @@ void setup_analyze(CLI::App& app) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   command->add_option("--nav-models", o->nav_models,
-                      "navigation models: schuler, covariance, montecarlo, paper (the paper's eq. 6), comma list")
+                      "navigation models: schuler, covariance, montecarlo (1000 runs), paper (the paper's eq. 6), comma list")
       ->capture_default_str();
   command->add_flag("--keep-going", o->keep_going,
                     "an input or channel that fails is reported and the others are studied");

@@ -189,9 +189,9 @@ py::object analyze(const py::object& channels, double rate, const py::object& un
 void register_study(py::module_& m) {
   m.def("analyze", &analyze, py::arg("channels"), py::arg("rate"), py::arg("units") = py::none(),
         py::arg("names") = py::none(), py::arg("spec") = py::none(), py::arg("geometry") = py::none(),
-        py::arg("nav_hours") = 1.0, py::arg("nav_models") = "schuler,covariance", py::arg("estimators") = py::none(), py::arg("keep_going") = false,
+        py::arg("nav_hours") = 1.0, py::arg("nav_models") = "schuler,covariance,montecarlo", py::arg("estimators") = py::none(), py::arg("keep_going") = false,
         py::arg("output_dir") = py::none(), py::arg("force") = false,
-        R"(analyze(channels, rate, units=None, names=None, spec=None, geometry=None, nav_hours=1.0, nav_models='schuler,covariance',
+        R"(analyze(channels, rate, units=None, names=None, spec=None, geometry=None, nav_hours=1.0, nav_models='schuler,covariance,montecarlo',
         estimators=None, keep_going=False, output_dir=None, force=False) -> dict
 
 The whole study of rate records: the document `imunoise analyze` writes as report.json

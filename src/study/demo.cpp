@@ -69,7 +69,7 @@ StudyOptions demo_study_options() {
   o.spec = builtin_spec("tg100");
   o.geometry = "tetra";
   o.nav_hours = 1.0;
-  o.nav_models = "paper,schuler,covariance";  // the study reproduced: its eq. 6 beside the physical models
+  o.nav_models = "paper,schuler,covariance,montecarlo";  // the study reproduced: its eq. 6 beside the physical models
   o.title = "imunoise demo: four TG-100 gyros (the paper's Table 2, simulated)";
   return o;
 }

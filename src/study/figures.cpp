@@ -122,15 +122,72 @@ void nav_figures(const nlohmann::json& doc, nlohmann::json& figures) {
                        {"title", std::string(q.title) + " from the noise of " + name},
                        {"caption", "RMS error of a free-inertial system whose gyros all have the "
                                    "noise model fitted to " + name + ", per navigation model "
-                                   "(paper: the published eq. 6; schuler: Schuler-loop closed "
-                                   "forms; covariance: the linearised error model with Earth "
-                                   "rate). Black point: the paper's published 1-hour value."},
+                                   "(schuler: Schuler-loop closed forms; covariance: the linearised "
+                                   "error model with Earth rate; montecarlo: the same model driven "
+                                   "by simulated noise, 1000 runs; paper, when asked: the published "
+                                   "eq. 6, its 1-hour value the black point)."},
                        {"x_label", "time [min]"},
                        {"y_label", q.y_label},
                        {"x_log", false},
                        {"y_log", false},
                        {"series", std::move(series)}});
   }
+}
+
+// The error budget of the covariance model (the whole IMU's when the study has one, else the
+// first gyro's): each term's share of the horizontal position variance versus time, stacked
+// (each line the sum of the terms below it, largest first), so the gap between two lines is a
+// term's share; the caption names the term to improve first.
+void budget_figure(const nlohmann::json& doc, nlohmann::json& figures) {
+  const nlohmann::json* nav = nullptr;
+  std::string name;
+  if (doc.contains("imu_nav") && !doc["imu_nav"].is_null()) {
+    nav = &doc["imu_nav"]["nav"];
+    name = "the whole IMU";
+  } else {
+    for (const auto& ch : doc["channels"]) {
+      if (ch.contains("nav") && !ch["nav"].is_null()) {
+        nav = &ch["nav"];
+        name = ch["name"].get<std::string>() + " on every axis";
+        break;
+      }
+    }
+  }
+  if (nav == nullptr) return;
+  const nlohmann::json* model = nullptr;
+  for (const auto& m : (*nav)["models"]) {
+    if (m.contains("budget") && !m["budget"].empty()) model = &m;
+  }
+  if (model == nullptr) return;
+  const auto& t = (*model)["t_s"];
+  std::vector<std::pair<double, std::string>> order;
+  for (const auto& [term, shares] : (*model)["budget"].items()) order.emplace_back(shares.back().get<double>(), term);
+  std::stable_sort(order.begin(), order.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  std::vector<double> sum(t.size(), 0.0);
+  nlohmann::json series = nlohmann::json::array();
+  int color = 0;
+  for (const auto& [last, term] : order) {
+    const auto& shares = (*model)["budget"][term];
+    nlohmann::json x = nlohmann::json::array(), y = nlohmann::json::array();
+    for (std::size_t i = 1; i < t.size(); ++i) {
+      sum[i] += shares[i].get<double>();
+      x.push_back(t[i].get<double>() / 60.0);
+      y.push_back(100.0 * sum[i]);
+    }
+    series.push_back({{"name", (color == 0 ? "" : "+ ") + term}, {"style", "line"}, {"color", color++},
+                      {"x", std::move(x)}, {"y", std::move(y)}});
+  }
+  figures.push_back({{"id", "nav_budget"},
+                     {"title", "Error budget of " + name + ": each term's share of the position error"},
+                     {"caption", "Share of the horizontal position variance per noise term (covariance model), "
+                                 "stacked: each line adds its term to those below it. At the end of the run " +
+                                     order.front().second + " is the largest share (" +
+                                     fmt::format("{:.0f}", 100.0 * order.front().first) + " %): improve it first."},
+                     {"x_label", "time [min]"},
+                     {"y_label", "cumulative share [%]"},
+                     {"x_log", false},
+                     {"y_log", false},
+                     {"series", std::move(series)}});
 }
 
 // Allan variance of eq. 5 from a {Q, N, B, K, R} block of values in one unit.
@@ -395,6 +452,7 @@ nlohmann::json build_figures(const nlohmann::json& doc) {
   }
   fused_figure(doc, figures);
   nav_figures(doc, figures);
+  budget_figure(doc, figures);
   for (const auto& ch : channels) davar_figure(ch, figures);
   for (auto& f : figures) {
     if (f["x_log"].get<bool>()) set_ranges(f);

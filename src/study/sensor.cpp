@@ -46,6 +46,7 @@ SensorStudy study_sensor(const Record& record, const SensorOptions& options) {
   }
   StudyOptions nav_options;
   nav_options.nav_hours = options.nav_hours;
+  nav_options.nav_models = "schuler,covariance";  // a fleet keeps one number a model: no simulation
   try {
     out.nav = navigation(out.fit.coefficients, nav_options);
   } catch (const InputError& e) {

@@ -111,7 +111,7 @@ TEST(Study, DocumentHoldsTheLibrarysNumbers) {
     no.step_s = 60.0;
     no.dt_s = 1.0;
     no.latitude_rad = 58.5 * M_PI / 180.0;
-    no.models = nav::parse_models("schuler,covariance");
+    no.models = nav::parse_models("schuler,covariance,montecarlo");
     EXPECT_EQ(ch["nav"], nav::report_json(nav::navigation_error(no)));
   }
 }
@@ -162,7 +162,8 @@ TEST(Study, RedundantUnitIsTheModulesAnalysisAndItsFusedAxesMatchIt) {
       EXPECT_NEAR(p["dev"].get<double>(), predicted, 4 * half_bar) << curve["estimator"];
     }
   }
-  EXPECT_EQ(doc["figures"][doc["figures"].size() - 4]["id"], "adev_fused");
+  // The fused axes' figure right before the navigation figures (latitude, path, longitude, budget).
+  EXPECT_EQ(doc["figures"][doc["figures"].size() - 5]["id"], "adev_fused");
 }
 
 // A step of 0.05 deg/s on gyro 2 at 900 s (57 times the 1 s window's noise of one sensor):
@@ -197,11 +198,17 @@ TEST(Study, RedundantUnitDetectsAStepFaultInTheRecords) {
 TEST(Study, FiguresCarryDataAndUnits) {
   const auto doc = study::study_json(study::run_study(two_gyros(), options_with_spec()));
   const auto& figures = doc["figures"];
-  // Both gyros overlaid, one per gyro, then the navigation error of the first (Figures 5-7).
+  // Both gyros overlaid, one per gyro, then the navigation error of the first (Figures 5-7)
+  // and its error budget.
   std::vector<std::string> ids;
   for (const auto& f : figures) ids.push_back(f["id"]);
   EXPECT_EQ(ids, (std::vector<std::string>{"adev_all_gyros", "adev_gx", "adev_gy", "nav_latitude",
-                                           "nav_path", "nav_longitude"}));
+                                           "nav_path", "nav_longitude", "nav_budget"}));
+  // The budget is stacked: its top line is 100 % at every time, and the caption names the
+  // largest term.
+  const auto& budget = figures.back();
+  for (const auto& y : budget["series"].back()["y"]) EXPECT_NEAR(y.get<double>(), 100.0, 1e-9);
+  EXPECT_NE(budget["caption"].get<std::string>().find("improve it first"), std::string::npos);
   for (const auto& f : figures) {
     const bool adev = f["id"].get<std::string>().rfind("adev", 0) == 0;
     EXPECT_NE(f["y_label"].get<std::string>().find(adev ? "[deg/s]" : "["), std::string::npos);
