@@ -30,7 +30,7 @@
 #include "mpi_session.hpp"
 #include "output.hpp"
 #include "imunoise/load/load.hpp"
-#include "imunoise/parallel/task_farm.hpp"
+#include "imunoise/fleet/study_files.hpp"
 #include "imunoise/study/sensor.hpp"
 #include "imunoise/tau_grid.hpp"
 
@@ -64,27 +64,6 @@ study::SensorOptions analysis_options(const FleetOptionsCli& options) {
   return a;
 }
 
-// The per-file step (imunoise/fleet/fleet.hpp): load the record and study it.
-fleet::SensorOutcome analyze_file(const FleetOptionsCli& options, const study::SensorOptions& analysis,
-                                  std::size_t index) {
-  load::LoadOptions input = options.inputs.load;
-  input.file = options.inputs.files[index];
-  input.column = options.inputs.columns;
-  return fleet::study_file(input, analysis);
-}
-
-void report_failure(const fleet::SensorOutcome& outcome, bool strict) {
-  if (!strict) {
-    fmt::print(stderr, "imunoise: warning: {} (the fleet run goes on; --strict stops at the first "
-                       "failed file)\n", outcome.error);
-  }
-}
-
-[[noreturn]] void fail_strict(const fleet::SensorOutcome& outcome) {
-  throw InputError(outcome.error + " (--strict: the fleet run stops at the first failed file; "
-                   "without it the file is reported and the run goes on)");
-}
-
 // Test hook (tests/fleet): a worker rank given a file whose name ends with this text kills
 // itself, standing in for a node that dies mid-run.
 bool must_die(const std::string& file) {
@@ -92,31 +71,6 @@ bool must_die(const std::string& file) {
   if (suffix == nullptr || *suffix == '\0') return false;
   const std::string s(suffix);
   return file.size() >= s.size() && file.compare(file.size() - s.size(), s.size(), s) == 0;
-}
-
-// Rank 0 of a parallel run: the files handed out as ranks become free, results in the files'
-// order (imunoise/parallel/task_farm.hpp).
-std::vector<fleet::SensorOutcome> dispatch(const FleetOptionsCli& options, const study::SensorOptions& analysis,
-                                           parallel::Ranks& ranks) {
-  std::vector<fleet::SensorOutcome> results(options.inputs.files.size());
-  const fleet::SensorOutcome* first_failure = nullptr;
-  const auto work = [&](std::size_t index) {
-    if (must_die(options.inputs.files.at(index))) std::raise(SIGKILL);
-    return fleet::encode_outcome(index, analyze_file(options, analysis, index));
-  };
-  const auto on_result = [&](std::size_t, const parallel::Bytes& bytes) {
-    fleet::SensorOutcome outcome;
-    const std::size_t index = fleet::decode_outcome(bytes, options.inputs.files, outcome);
-    results[index] = std::move(outcome);
-    if (!results[index].ok()) {
-      report_failure(results[index], options.strict);
-      if (options.strict && first_failure == nullptr) first_failure = &results[index];
-    }
-    return first_failure == nullptr;
-  };
-  parallel::run_task_farm(ranks, results.size(), work, on_result);
-  if (first_failure != nullptr) fail_strict(*first_failure);
-  return results;
 }
 
 void run_fleet(const FleetOptionsCli& options) {
@@ -143,19 +97,25 @@ void run_fleet(const FleetOptionsCli& options) {
     if (ranks.rank() == 0) throw InputError(error);
     return;
   }
-  std::vector<fleet::SensorOutcome> results;
-  if (ranks.size() == 1) {
-    for (std::size_t i = 0; i < options.inputs.files.size(); ++i) {
-      results.push_back(analyze_file(options, analysis, i));
-      if (!results.back().ok()) {
-        if (options.strict) fail_strict(results.back());
-        report_failure(results.back(), false);
-      }
-    }
-  } else {
-    results = dispatch(options, analysis, ranks);
-    if (ranks.rank() != 0) return;
+  std::vector<load::LoadOptions> inputs;
+  for (const auto& file : options.inputs.files) {
+    inputs.push_back(options.inputs.load);
+    inputs.back().file = file;
+    inputs.back().column = options.inputs.columns;
   }
+  fleet::StudyFilesOptions run;
+  run.strict = options.strict;
+  run.on_failure = [](const fleet::SensorOutcome& outcome) {
+    fmt::print(stderr, "imunoise: warning: {} (the fleet run goes on; --strict stops at the first failed file)\n",
+               outcome.error);
+  };
+  if (ranks.size() > 1) {
+    run.before_file = [&](std::size_t i) {
+      if (must_die(options.inputs.files[i])) std::raise(SIGKILL);
+    };
+  }
+  const auto results = fleet::study_files(ranks, inputs, analysis, run);
+  if (ranks.rank() != 0) return;
   fleet::FleetRules rules;
   rules.outlier_z = options.outlier_z;
   const fleet::FleetSummary summary = fleet::summarize_fleet(results, rules);
