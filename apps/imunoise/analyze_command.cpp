@@ -23,6 +23,7 @@
 #include "imunoise/load/load.hpp"
 #include "imunoise/study/study.hpp"
 #include "imunoise/study/summary.hpp"
+#include "imunoise/study/study_fits.hpp"
 #include "imunoise/study/write.hpp"
 #include "fit_options.hpp"
 #include "input_options.hpp"
@@ -78,27 +79,14 @@ void run_analyze(const AnalyzeOptionsCli& o) {
                                        [&](const std::string& file, const std::string& error) {
                                          failed.push_back({file, error});
                                        });
-  std::vector<study::Record> records;
-  for (std::size_t i = 0; i < plan.size(); ++i) {
-    progress.update("reading " + plan[i].name, 0.0);
-    try {
-      if (!plan[i].note.empty()) fmt::print(stderr, "imunoise: note: {}\n", plan[i].note);
-      Record record = load::load(plan[i].options);
-      print_load_notes(record);
-      record.name = plan[i].name;
-      records.push_back(std::move(record));
-    } catch (const InputError& e) {
-      if (!o.keep_going) {
-        if (o.inputs.files.size() > 1 || plan.size() > 1) {
-          throw InputError(std::string(e.what()) +
-                           " (pass --keep-going to study the other inputs without it)");
-        }
-        throw;
-      }
-      failed.push_back({plan[i].options.file, e.what()});
-      fmt::print(stderr, "imunoise: warning: skipped: {}\n", e.what());
-    }
-  }
+  auto records = load::load_channels(
+      plan, o.keep_going,
+      [&](const std::string& file, const std::string& error) {
+        failed.push_back({file, error});
+        fmt::print(stderr, "imunoise: warning: skipped: {}\n", error);
+      },
+      [&](std::size_t i) { progress.update("reading " + plan[i].name, 0.0); });
+  for (const auto& record : records) print_load_notes(record);
   study::Study result = study::run_study(std::move(records), so, failed,
                                          [&](std::string_view what, double fraction) {
                                            progress.update(std::string(what), fraction);
@@ -107,23 +95,9 @@ void run_analyze(const AnalyzeOptionsCli& o) {
   const auto doc = study::study_json(result);
   const auto written = study::write_report(doc, o.dir, {o.force, "", "gnuplot"});
   progress.done();
-  std::vector<exports::AxisFit> fits;
-  std::string sources;
-  double rate_hz = 0.0;
-  for (const auto& ch : result.channels) {
-    if (!ch.fit) continue;
-    fits.push_back(exports::axis_fit(ch.record, ch.fit->coefficients));
-    fits.back().channel = ch.record.name;
-    if (sources.find(ch.record.source) == std::string::npos) sources += (sources.empty() ? "" : ", ") + ch.record.source;
-    if (rate_hz == 0.0) rate_hz = ch.record.rate_hz;
-    if (ch.record.rate_hz != rate_hz && !filter.exports.empty()) {
-      throw InputError(fmt::format("--export: channel {} is sampled at {:g} Hz and the others at {:g} Hz; a filter "
-                                   "file has one rate; fix: export from channels of one rate",
-                                   ch.record.name, ch.record.rate_hz, rate_hz));
-    }
-  }
   if (!filter.exports.empty()) {
-    for (const auto& e : run_filter_exports(filter, fits, rate_hz, sources, o.dir)) {
+    const study::StudyFits fits = study::study_fits(result);
+    for (const auto& e : run_filter_exports(filter, fits.fits, fits.rate_hz, fits.sources, o.dir)) {
       fmt::print("export: {} ({})\n", e["path"].get<std::string>(), e["target"].get<std::string>());
     }
   }

@@ -705,4 +705,26 @@ std::vector<double> read_phase_slice(const RecordPlan& plan, const std::string& 
   return phase;
 }
 
+std::vector<Record> load_channels(std::span<const ChannelPlan> plan, bool keep_going,
+                                  const std::function<void(const std::string& file, const std::string& error)>& skipped,
+                                  const std::function<void(std::size_t)>& before) {
+  std::vector<Record> records;
+  for (std::size_t i = 0; i < plan.size(); ++i) {
+    if (before) before(i);
+    try {
+      Record record = load(plan[i].options);
+      record.name = plan[i].name;
+      if (!plan[i].note.empty()) record.notes.insert(record.notes.begin(), "note: " + plan[i].note);
+      records.push_back(std::move(record));
+    } catch (const InputError& e) {
+      if (!keep_going) {
+        if (plan.size() > 1) throw InputError(std::string(e.what()) + " (pass --keep-going to study the other inputs without it)");
+        throw;
+      }
+      if (skipped) skipped(plan[i].options.file, e.what());
+    }
+  }
+  return records;
+}
+
 }  // namespace imunoise::load

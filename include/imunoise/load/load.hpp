@@ -128,4 +128,11 @@ std::vector<ChannelPlan> plan_channels(std::span<const std::string> files, const
                                        const std::string& names_list, const LoadOptions& shared, bool keep_going,
                                        const std::function<void(const std::string& file, const std::string& error)>& failed);
 
+/// Loads every planned channel, named as planned. A channel that cannot be loaded is an
+/// InputError (saying --keep-going would skip it when there are several), or with `keep_going`
+/// reported to `skipped(file, error)` and left out. `before(i)` runs before channel i (progress).
+std::vector<Record> load_channels(std::span<const ChannelPlan> plan, bool keep_going,
+                                  const std::function<void(const std::string& file, const std::string& error)>& skipped,
+                                  const std::function<void(std::size_t)>& before = {});
+
 }  // namespace imunoise::load
