@@ -1,7 +1,6 @@
 // imunoise analyze: the whole study of several recordings (files, or columns of one file) in
 // one run, written as a report directory. Parses options, loads the channels and hands them
 // to the library (imunoise/study); the report is rendered there.
-#include <unistd.h>
 
 #include <filesystem>
 #include <memory>
@@ -11,14 +10,12 @@
 #include <fmt/core.h>
 
 #include "commands.hpp"
-#include "imunoise/comma_list.hpp"
 #include "imunoise/confidence/interval.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/nav/navigation.hpp"
 #include "imunoise/export/export_model.hpp"
 #include "imunoise/estimator.hpp"
 #include "imunoise/fit/report.hpp"
-#include "imunoise/io/binary_reader.hpp"
 #include "imunoise/spec/spec.hpp"
 #include "imunoise/load/load.hpp"
 #include "imunoise/study/study.hpp"

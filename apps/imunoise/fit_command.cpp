@@ -1,7 +1,6 @@
 // imunoise fit: noise-model coefficients (paper eq. 5) with confidence intervals, the verdict
 // on each term, fit diagnostics, and (through spec_exports) the datasheet comparison and the
 // Kalibr / Kalman-filter exports.
-#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -12,7 +11,6 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "imunoise/allan.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/export/export_model.hpp"
 #include "imunoise/fit/fit.hpp"
@@ -21,7 +19,7 @@
 #include "imunoise/preprocess/temperature.hpp"
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
-#include "imunoise/parallel/distributed_deviations.hpp"
+#include "imunoise/parallel/distributed_fit.hpp"
 #include "mpi_session.hpp"
 #include "imunoise/study/fit_stage.hpp"
 #include "fit_options.hpp"
@@ -42,27 +40,6 @@ struct FitCommandOptions {
   bool mpi = false;
 };
 
-// --mpi: each rank reads its slice; the oadev sums are merged in a tree
-// (imunoise/parallel/distributed_deviations.hpp) and rank 0 fits the merged curve. Empty on the
-// other ranks.
-std::optional<std::pair<Record, fit::FitResult>> fit_distributed(const FitCommandOptions& options,
-                                                                 const fit::FitOptions& fo) {
-  auto dist = parallel::distributed_deviations(mpi::start(), options.input, {Estimator::oadev},
-                                              parse_tau_grid(options.taus));
-  if (!dist.root) return std::nullopt;
-  bool constant = true;
-  for (const auto& p : dist.curves[0]) constant = constant && !(p.n > 0 && p.dev > 0.0);
-  if (constant) {
-    throw InputError(dist.record.source + ": the rate is constant (all-zero or a fixed value): there "
-                     "is no noise to identify; check --column and the file");
-  }
-  const std::vector<std::string> warnings{
-      "--mpi: the record checks (quantization, saturation, constant stretches) need the whole "
-      "record in one place and were not run"};
-  auto result = study::fit_curve(dist.record, dist.curves[0], dist.n_phase, fo, warnings);
-  return std::make_pair(std::move(dist.record), std::move(result));
-}
-
 void run_fit(FitCommandOptions& options) {
   if (options.format != "json" && options.format != "table") {
     throw InputError("unknown --format '" + options.format + "'; use json or table");
@@ -73,7 +50,7 @@ void run_fit(FitCommandOptions& options) {
   Record record;
   fit::FitResult result;
   if (options.mpi) {
-    auto fitted = fit_distributed(options, fo);
+    auto fitted = parallel::fit_distributed(mpi::start(), options.input, parse_tau_grid(options.taus), fo);
     if (!fitted) return;
     record = std::move(fitted->first);
     result = std::move(fitted->second);

@@ -19,7 +19,6 @@
 
 #include "commands.hpp"
 #include "imunoise/error.hpp"
-#include "imunoise/fit/report.hpp"
 #include "imunoise/fleet/fleet.hpp"
 #include "imunoise/fleet/outcome_wire.hpp"
 #include "imunoise/fleet/report.hpp"
