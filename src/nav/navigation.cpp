@@ -48,40 +48,35 @@ std::vector<Model> parse_models(const std::string& list) {
   return out;
 }
 
-GyroTerms terms_of(const GyroAxisNoise& axis) {
-  const NoiseCoefficients& c = axis.coefficients;
+namespace {
+
+// The present terms of a sensor's coefficients (identified values only), in its SI unit.
+struct Present {
+  double q, n, b, k, r, gm_sigma, gm_time_s;
+};
+
+Present present_of(const NoiseCoefficients& c) {
   auto v = [](const Coefficient& k) { return k.identified ? std::abs(k.value) : 0.0; };
-  GyroTerms t;
-  t.q_rad = v(c.quantization);
-  t.n_rad_sqrt_s = v(c.random_walk);
-  t.b_rad_s = v(c.bias_instability);
-  t.k_rad_s_sqrt_s = v(c.rate_random_walk);
-  t.r_rad_s2 = c.rate_ramp.identified ? c.rate_ramp.value : 0.0;
+  Present p{v(c.quantization), v(c.random_walk), v(c.bias_instability), v(c.rate_random_walk),
+            c.rate_ramp.identified ? c.rate_ramp.value : 0.0, 0.0, 0.0};
   if (c.gauss_markov && c.gauss_markov->sigma.identified && c.gauss_markov->correlation_time_s.identified &&
       c.gauss_markov->sigma.value > 0.0) {
-    t.gm_sigma_rad_s = c.gauss_markov->sigma.value;
-    t.gm_time_s = c.gauss_markov->correlation_time_s.value;
+    p.gm_sigma = c.gauss_markov->sigma.value;
+    p.gm_time_s = c.gauss_markov->correlation_time_s.value;
   }
-  t.bias_rad_s = axis.bias_rad_s;
-  return t;
+  return p;
+}
+
+}  // namespace
+
+GyroTerms terms_of(const GyroAxisNoise& axis) {
+  const Present p = present_of(axis.coefficients);
+  return {p.q, p.n, p.b, p.k, p.r, p.gm_sigma, p.gm_time_s, axis.bias_rad_s};
 }
 
 AccelTerms terms_of(const AccelAxisNoise& axis) {
-  const NoiseCoefficients& c = axis.coefficients;
-  auto v = [](const Coefficient& k) { return k.identified ? std::abs(k.value) : 0.0; };
-  AccelTerms t;
-  t.q_m_s = v(c.quantization);
-  t.n_m_s_sqrt_s = v(c.random_walk);
-  t.b_m_s2 = v(c.bias_instability);
-  t.k_m_s2_sqrt_s = v(c.rate_random_walk);
-  t.r_m_s3 = c.rate_ramp.identified ? c.rate_ramp.value : 0.0;
-  if (c.gauss_markov && c.gauss_markov->sigma.identified && c.gauss_markov->correlation_time_s.identified &&
-      c.gauss_markov->sigma.value > 0.0) {
-    t.gm_sigma_m_s2 = c.gauss_markov->sigma.value;
-    t.gm_time_s = c.gauss_markov->correlation_time_s.value;
-  }
-  t.bias_m_s2 = axis.bias_m_s2;
-  return t;
+  const Present p = present_of(axis.coefficients);
+  return {p.q, p.n, p.b, p.k, p.r, p.gm_sigma, p.gm_time_s, axis.bias_m_s2};
 }
 
 namespace {
