@@ -1,9 +1,8 @@
 #!/usr/bin/env bash
 # Sets up a fresh Debian 12 machine (apt packages), builds the default preset (everything:
 # library, CLI, tests, benchmarks, Python module) and runs every test but the slow Monte-Carlo
-# studies (C++ unit and CLI tests,
-# Python module tests, the find_package consumer), then the Python package installed with pip
-# into a virtual environment and tested there.
+# studies (C++ unit and CLI tests, Python module tests, the find_package consumer), then the
+# Python package installed with pip into a virtual environment and tested there.
 set -euo pipefail
 here="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 "$here/scripts/setup.sh" default
