@@ -468,9 +468,9 @@ class UlogReader {
       for (std::size_t c = 0; c < r.channels.size(); ++c) r.channels[c].time_s = seconds(*stamps[c]);
     }
     if (dropouts_ > 0) {
-      r.notes.push_back(fmt::format("{}: the PX4 logger dropped data {} time{} ({} ms in all): samples are missing "
-                                    "there (see the timestamp gaps)",
-                                    source_, dropouts_, dropouts_ == 1 ? "" : "s", dropout_ms_));
+      r.notes.push_back(fmt::format("{}: the PX4 logger dropped data {} time{} ({} ms in all); a sample of {} lost "
+                                    "there shows as a timestamp gap",
+                                    source_, dropouts_, dropouts_ == 1 ? "" : "s", dropout_ms_, topic_));
     }
     return r;
   }

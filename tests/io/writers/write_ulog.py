@@ -2,7 +2,7 @@
 """Writes a PX4 ULog test file from the published format specification
 (https://docs.px4.io/main/en/dev_log/ulog_file_format.html), independently of imunoise's reader.
 
-    write_ulog.py OUT.ulg N [SEED]
+    write_ulog.py OUT.ulg N [SEED] [combined]
 
 The log holds, at 200 Hz for N samples: sensor_combined (one instance), sensor_gyro and
 sensor_accel (two instances, multi_id 0 and 1, sampled at different instants), vehicle_imu (two
@@ -11,7 +11,8 @@ vehicle_acceleration (one instance; the latter's format nests another format and
 padding field that is not written, as the specification allows), and vehicle_status (not an
 IMU topic). Interleaved: information, parameters, log text ('L', 'C'), sync ('S'), two dropouts
 ('O', 15 ms and 30 ms) and a removed then re-added subscription. OUT.ulg.json records the
-dropouts written. Values are checked in the tests against the reference reader @foxglove/ulog.
+dropouts written. With "combined" (the 4.3 M-message benchmark log) only sensor_combined is
+written, with the dropouts. Values are checked in the tests against the reference reader @foxglove/ulog.
 """
 import json
 import random
@@ -54,6 +55,8 @@ FORMATS = {
 def main():
     out, n = sys.argv[1], int(sys.argv[2])
     rng = random.Random(int(sys.argv[3]) if len(sys.argv) > 3 else 7)
+    combined_only = len(sys.argv) > 4 and sys.argv[4] == "combined"
+    combined = struct.Struct("<HBHQ3fIi3fI4B")
     f32 = lambda x: struct.unpack("<f", struct.pack("<f", x))[0]
     data = bytearray(MAGIC + bytes([1]) + struct.pack("<Q", 1_000_000))
     data += message("B", bytes(8) + bytes(8) + struct.pack("<3Q", 0, 0, 0))
@@ -94,6 +97,10 @@ def main():
             data += message("R", struct.pack("<H", ids[("vehicle_status", 0)]))
             data += message("A", struct.pack("<BH", 0, ids[("vehicle_status", 0)]) + b"vehicle_status")
         g, a = v(0.01), v(0.05)
+        if combined_only:
+            data += combined.pack(combined.size - 3, ord("D"), ids[("sensor_combined", 0)], t, *g, 5000, 0, *a, 5000,
+                                  0, 0, 1, 1)
+            continue
         data += d("sensor_combined", 0, struct.pack("<Q3fIi3fI4B", t, *g, 5000, 0, *a, 5000, 0, 0, 1, 1))
         for multi, phase in ((0, 0), (1, 1234)):
             ts = t + phase - 300
