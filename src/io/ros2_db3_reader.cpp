@@ -209,6 +209,8 @@ Recording read_ros2_db3(const std::filesystem::path& path, std::string_view topi
   }
   detail::ImuColumns columns;
   std::string type = "sensor_msgs/msg/Imu";
+  std::string missing;  // the first file's refusal, when no file has the topic
+  bool found = false;
   for (const auto& file : files) {
     const Database db(file);
     const std::vector<TopicRow> topics = topics_of(db);
@@ -220,9 +222,14 @@ Recording read_ros2_db3(const std::filesystem::path& path, std::string_view topi
       return describe_streams(streams, "topic");
     };
     if (it == topics.end()) {
-      throw InputError(file.string() + ": " + (topic.empty() ? std::string("no --topic given") : "no topic " + std::string(topic)) +
-                       "; fix: pass --topic with one of the sensor_msgs/msg/Imu topics the bag holds:\n" + listing());
+      // A topic created after a split is not in the earlier files: only a topic in no file is missing.
+      if (missing.empty()) {
+        missing = file.string() + ": " + (topic.empty() ? std::string("no --topic given") : "no topic " + std::string(topic)) +
+                  "; fix: pass --topic with one of the sensor_msgs/msg/Imu topics the bag holds:\n" + listing();
+      }
+      continue;
     }
+    found = true;
     if (it->type != "sensor_msgs/msg/Imu" || it->format != "cdr") {
       throw InputError(file.string() + ": topic " + it->name + " has type " + it->type + " (" + it->format +
                        "), not sensor_msgs/msg/Imu (cdr); fix: pass --topic with an Imu topic; topics in the bag:\n" + listing());
@@ -248,6 +255,7 @@ Recording read_ros2_db3(const std::filesystem::path& path, std::string_view topi
       read_range(file, it->id, lo, hi, part);
     });
   }
+  if (!found) throw InputError(missing);
   return detail::imu_recording(std::move(columns), source, RecordingFormat::ros2_db3, std::string(topic), type);
 }
 

@@ -160,6 +160,13 @@ class UlogReader {
       // The message header by hand: a cursor per message (it copies the file name) would
       // cost an allocation for each of millions of data messages.
       const std::size_t at = c.pos();
+      // Data appended after a logger stop ('B' appended_offsets) may follow a message cut in
+      // the middle, as the specification allows: a message crossing the offset is skipped.
+      const auto next = std::upper_bound(appended_.begin(), appended_.end(), at);
+      if (next != appended_.end() && (*next - at < 3 || (bytes_[at] | (std::size_t{bytes_[at + 1]} << 8)) > *next - at - 3)) {
+        c.seek(*next, "appended data");
+        continue;
+      }
       if (c.remaining() < 3) c.fail("a message header needs 3 bytes (the log was cut short)");
       const unsigned char* h = bytes_.data() + at;
       const std::size_t size = h[0] | (std::size_t{h[1]} << 8);
@@ -203,6 +210,13 @@ class UlogReader {
   void flag_bits(ByteCursor& m) {
     m.take(8, "compat flags");
     const auto incompat = m.take(8, "incompat flags");
+    if ((incompat[0] & 1u) != 0) {
+      for (int i = 0; i < 3; ++i) {
+        const std::uint64_t offset = m.u64("appended offset");
+        if (offset > kHeaderBytes && offset < bytes_.size()) appended_.push_back(static_cast<std::size_t>(offset));
+      }
+      std::sort(appended_.begin(), appended_.end());
+    }
     // Bit 0 of the first byte: data appended at the end (read sequentially like the rest).
     // Any other bit is a change of format this reader does not know: refuse, as the spec asks.
     if ((incompat[0] & ~1u) != 0 || std::any_of(incompat.begin() + 1, incompat.end(), [](auto b) { return b != 0; })) {
@@ -245,11 +259,16 @@ class UlogReader {
       fields.push_back(std::move(f));
     }
     formats_[std::string(text.substr(0, colon))] = std::move(fields);
+    sizes_.clear();
   }
 
-  // Size of a format in bytes (nested formats included); nullopt when it names an unknown one.
+  // Size of a format in bytes (nested formats included); nullopt when it names an unknown one,
+  // nests in a cycle or too deep. Memoized: a hostile log could nest wide formats many levels
+  // deep, which a plain recursion would expand exponentially.
   std::optional<std::size_t> format_size(const std::string& name, int depth) const {
     if (depth > kMaxNesting) return std::nullopt;
+    if (const auto known = sizes_.find(name); known != sizes_.end()) return known->second;
+    sizes_[name] = std::nullopt;  // while computing: a cycle back to it is unknown
     const auto it = formats_.find(name);
     if (it == formats_.end()) return std::nullopt;
     std::size_t total = 0;
@@ -264,6 +283,7 @@ class UlogReader {
       total += one * f.count;
       if (total > (std::size_t{1} << 32)) return std::nullopt;
     }
+    sizes_[name] = total;
     return total;
   }
 
@@ -486,12 +506,14 @@ class UlogReader {
   std::string source_;
   std::string topic_;
   std::map<std::string, std::vector<Field>> formats_;
+  mutable std::map<std::string, std::optional<std::size_t>> sizes_;  // format_size's memo
   std::map<std::string, TopicSeen> topics_;
   std::map<std::uint16_t, std::string> name_of_;                   // msg_id -> topic
   std::map<std::uint8_t, Instance> instances_;                     // of the asked topic, by multi_id
   std::vector<Instance*> decoder_ = std::vector<Instance*>(65536, nullptr);  // msg_id -> its instance
   std::vector<std::uint64_t> counts_ = std::vector<std::uint64_t>(65536, 0);
   std::optional<Layout> layout_;
+  std::vector<std::size_t> appended_;  // file offsets of appended data, sorted
   std::uint64_t dropouts_ = 0;
   std::uint64_t dropout_ms_ = 0;
 };

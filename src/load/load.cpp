@@ -309,7 +309,15 @@ void load_container(const LoadOptions& options, Record& record) {
   record.notes.insert(record.notes.end(), recording.notes.begin(), recording.notes.end());
   const std::vector<double>& time_s = recording.times(channel);  // a PX4 sensor instance has its own
   if (!time_s.empty()) {
-    record.timing = checked_timing(time_s, record.source, nullptr, gaps_allowed(options));
+    try {
+      record.timing = checked_timing(time_s, record.source, nullptr, gaps_allowed(options));
+    } catch (const InputError& e) {
+      // A gap that the reader can explain (a PX4 logger dropout) says so.
+      if (recording.notes.empty()) throw;
+      std::string message = e.what();
+      for (const auto& note : recording.notes) message += "\n  note: " + note;
+      throw InputError(message);
+    }
     if (record.rate_hz > 0 && std::abs(record.timing->rate_hz / record.rate_hz - 1.0) > 0.01) {
       throw InputError(record.source + ": --rate " + fmt::format("{}", record.rate_hz) +
                        " Hz disagrees with the file's timestamps (" +
