@@ -369,6 +369,15 @@ TEST_F(Ros2Ulog, CliReadsDb3AndUlogThroughTheOneLoader) {
   EXPECT_TRUE(fs::exists(out.path() / "analyze" / "report.json"));
   const std::string report = slurp(out.path() / "analyze" / "report.json");
   EXPECT_NE(report.find("accel1_z"), std::string::npos);
+  // The fleet and the redundant unit's fusion load through the same road.
+  const auto fleet = run_cli({"fleet", bag.string(), bag.string(), "--topic", "/imu", "--column", "gyro_x", "-q", "-o",
+                              (out.path() / "fleet").string()}, out.path());
+  EXPECT_EQ(fleet.exit_code, 0) << fleet.err;
+  EXPECT_NE(fleet.out.find("2 analysed, 0 failed"), std::string::npos) << fleet.out << fleet.err;
+  const std::string l = log.string();
+  const auto fuse = run_cli({"redundant", "--geometry", "tetra", "--fuse", l, l, l, l, "--topic", "sensor_combined",
+                             "--column", "gyro_z", "--format", "table"}, out.path());
+  EXPECT_EQ(fuse.exit_code, 0) << fuse.err;
 }
 
 }  // namespace
