@@ -203,6 +203,12 @@ class UlogReader {
   }
 
  private:
+  // A refusal that is not corruption: the message says its own fix (ByteCursor::fail's is for
+  // a damaged file).
+  [[noreturn]] void refuse(const ByteCursor& m, const std::string& what_and_fix) const {
+    throw InputError(fmt::format("{}: byte {}: {}", source_, m.base() + m.pos(), what_and_fix));
+  }
+
   static std::string printable(std::uint8_t type) {
     return type >= 0x20 && type < 0x7f ? std::string(1, static_cast<char>(type)) : fmt::format("\\x{:02x}", type);
   }
@@ -220,7 +226,8 @@ class UlogReader {
     // Bit 0 of the first byte: data appended at the end (read sequentially like the rest).
     // Any other bit is a change of format this reader does not know: refuse, as the spec asks.
     if ((incompat[0] & ~1u) != 0 || std::any_of(incompat.begin() + 1, incompat.end(), [](auto b) { return b != 0; })) {
-      m.fail("unknown incompatible flag bits are set (a newer ULog format); fix: convert the log with a current pyulog");
+      refuse(m, "unknown incompatible flag bits are set (a newer ULog format than this reader knows); fix: export "
+                "the IMU topic with a current pyulog (ulog2csv) and read the CSV file");
     }
   }
 
@@ -310,8 +317,11 @@ class UlogReader {
     Layout l;
     auto need = [&](std::string_view name) {
       const auto s = slot(fields, name, m);
-      if (!s || !numeric(*s)) m.fail(fmt::format("the format of {} has no numeric field '{}'; fix: this PX4 version's "
-                                                 "layout is not known, log sensor_combined", topic_, name));
+      if (!s || !numeric(*s)) {
+        refuse(m, fmt::format("the format of {} has no numeric field '{}' (a PX4 version whose layout this reader "
+                              "does not know); fix: read another IMU topic of the log (sensor_combined, vehicle_imu, "
+                              "sensor_gyro, sensor_accel)", topic_, name));
+      }
       return *s;
     };
     auto three = [&](std::string_view array, std::string_view x) {
@@ -322,7 +332,8 @@ class UlogReader {
       const Slot sz = need(std::string(x.substr(0, x.size() - 1)) + "z");
       if (sy.base != sx.base || sz.base != sx.base || sy.offset != sx.offset + size_of(sx.base) ||
           sz.offset != sy.offset + size_of(sx.base)) {
-        m.fail("fields x, y, z of " + topic_ + " are not consecutive values of one type");
+        refuse(m, "fields x, y, z of " + topic_ + " are not consecutive values of one type (an unknown layout); "
+                  "fix: read another IMU topic of the log");
       }
       sx.count = 3;
       return sx;

@@ -80,6 +80,8 @@ class Ros2Ulog : public ::testing::Test {
     std::string command;
     if (name == "log.ulg") {
       command = "/usr/bin/python3 " + (kWriters / "write_ulog.py").string() + " " + path.string() + " 1500";
+    } else if (name == "relative.ulg") {
+      command = "/usr/bin/python3 " + (kWriters / "write_ulog.py").string() + " " + path.string() + " 300 9 relative";
     } else {
       const bool big = name.find("be") != std::string::npos;
       const bool split = name.find("split") != std::string::npos;
@@ -260,6 +262,17 @@ TEST_F(Ros2Ulog, UlogEveryImuTopicMatchesTheReferenceReader) {
   ASSERT_EQ(written.at("dropouts"), 2);
   ASSERT_EQ(combined.notes.size(), 1u);
   EXPECT_NE(combined.notes[0].find("dropped data 2 times (45 ms in all)"), std::string::npos) << combined.notes[0];
+}
+
+TEST_F(Ros2Ulog, UlogSensorCombinedAccelerometerKeepsItsOwnTimeAndSkipsInvalidOnes) {
+  REQUIRE_REFERENCE();
+  const fs::path log = file("relative.ulg");
+  const Recording r = read_recording(log, topic("sensor_combined"));
+  expect_matches_reference(r, reference(log, "sensor_combined"));
+  EXPECT_TRUE(r.time_s.empty());
+  EXPECT_EQ(r.channel("gyro_x").values.size(), 300u);
+  EXPECT_EQ(r.channel("accel_x").values.size(), 294u);  // every 50th message had no accelerometer data
+  EXPECT_EQ(std::llround((r.channel("gyro_x").time_s[1] - r.channel("accel_x").time_s[0]) * 1e9), 13'000);
 }
 
 TEST_F(Ros2Ulog, UlogChannelsOfOneInstanceBecomeOneTimeAxisOthersAreRefused) {

@@ -3,7 +3,8 @@
 //   node read_ulog.js FILE.ulg TOPIC OUT.json
 // {"channels": {"gyro0_x": {"time_ns": ["..."], "values": [...]}, ...}}: per instance (multi_id),
 // in file order, time from timestamp_sample when the topic has it (else timestamp), values as
-// doubles (float32 widened exactly), vehicle_imu's deltas divided by their dt in µs. Channel
+// doubles (float32 widened exactly), vehicle_imu's deltas divided by their dt in µs,
+// sensor_combined's accelerometer at timestamp + accelerometer_timestamp_relative. Channel
 // names: gyro_x.. for one instance multi_id 0, else gyro<multi_id>_x.
 "use strict";
 const fs = require("fs");
@@ -43,7 +44,10 @@ async function main() {
     };
     if (topic === "sensor_combined") {
       put("gyro", m.gyro_rad, 1, t);
-      put("accel", m.accelerometer_m_s2, 1, t + BigInt(m.accelerometer_timestamp_relative) * 1000n);
+      // RELATIVE_TIMESTAMP_INVALID (0x7fffffff): no accelerometer data in this message.
+      if (m.accelerometer_timestamp_relative !== 0x7fffffff) {
+        put("accel", m.accelerometer_m_s2, 1, t + BigInt(m.accelerometer_timestamp_relative) * 1000n);
+      }
     } else if (topic === "vehicle_imu") {
       put("gyro", m.delta_angle, 1e6 / Number(m.delta_angle_dt), t);
       put("accel", m.delta_velocity, 1e6 / Number(m.delta_velocity_dt), t);

@@ -2,7 +2,7 @@
 """Writes a PX4 ULog test file from the published format specification
 (https://docs.px4.io/main/en/dev_log/ulog_file_format.html), independently of imunoise's reader.
 
-    write_ulog.py OUT.ulg N [SEED] [combined]
+    write_ulog.py OUT.ulg N [SEED] [combined|relative]
 
 The log holds, at 200 Hz for N samples: sensor_combined (one instance), sensor_gyro and
 sensor_accel (two instances, multi_id 0 and 1, sampled at different instants), vehicle_imu (two
@@ -12,7 +12,9 @@ padding field that is not written, as the specification allows), and vehicle_sta
 IMU topic). Interleaved: information, parameters, log text ('L', 'C'), sync ('S'), two dropouts
 ('O', 15 ms and 30 ms) and a removed then re-added subscription. OUT.ulg.json records the
 dropouts written. With "combined" (the 4.3 M-message benchmark log) only sensor_combined is
-written, with the dropouts. Values are checked in the tests against the reference reader @foxglove/ulog.
+written, with the dropouts. With "relative", sensor_combined's accelerometer is sampled 13 µs
+before the gyro (accelerometer_timestamp_relative -13) and every 50th message has no accelerometer
+data (RELATIVE_TIMESTAMP_INVALID, 0x7fffffff). Values are checked in the tests against the reference reader @foxglove/ulog.
 """
 import json
 import random
@@ -56,6 +58,7 @@ def main():
     out, n = sys.argv[1], int(sys.argv[2])
     rng = random.Random(int(sys.argv[3]) if len(sys.argv) > 3 else 7)
     combined_only = len(sys.argv) > 4 and sys.argv[4] == "combined"
+    relative = len(sys.argv) > 4 and sys.argv[4] == "relative"
     combined = struct.Struct("<HBHQ3fIi3fI4B")
     f32 = lambda x: struct.unpack("<f", struct.pack("<f", x))[0]
     data = bytearray(MAGIC + bytes([1]) + struct.pack("<Q", 1_000_000))
@@ -101,7 +104,8 @@ def main():
             data += combined.pack(combined.size - 3, ord("D"), ids[("sensor_combined", 0)], t, *g, 5000, 0, *a, 5000,
                                   0, 0, 1, 1)
             continue
-        data += d("sensor_combined", 0, struct.pack("<Q3fIi3fI4B", t, *g, 5000, 0, *a, 5000, 0, 0, 1, 1))
+        rel = (0x7FFFFFFF if i % 50 == 0 else -13) if relative else 0
+        data += d("sensor_combined", 0, struct.pack("<Q3fIi3fI4B", t, *g, 5000, rel, *a, 5000, 0, 0, 1, 1))
         for multi, phase in ((0, 0), (1, 1234)):
             ts = t + phase - 300
             data += d("sensor_gyro", multi, struct.pack("<QQI4fI3BB", t + phase, ts, 0x2100 + multi, *v(0.01),
