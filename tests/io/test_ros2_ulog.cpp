@@ -80,6 +80,8 @@ class Ros2Ulog : public ::testing::Test {
     std::string command;
     if (name == "log.ulg") {
       command = "/usr/bin/python3 " + (kWriters / "write_ulog.py").string() + " " + path.string() + " 1500";
+    } else if (name == "appended.ulg") {
+      command = "/usr/bin/python3 " + (kWriters / "write_ulog.py").string() + " " + path.string() + " 200 5 appended";
     } else if (name == "relative.ulg") {
       command = "/usr/bin/python3 " + (kWriters / "write_ulog.py").string() + " " + path.string() + " 300 9 relative";
     } else {
@@ -273,6 +275,31 @@ TEST_F(Ros2Ulog, UlogSensorCombinedAccelerometerKeepsItsOwnTimeAndSkipsInvalidOn
   EXPECT_EQ(r.channel("gyro_x").values.size(), 300u);
   EXPECT_EQ(r.channel("accel_x").values.size(), 294u);  // every 50th message had no accelerometer data
   EXPECT_EQ(std::llround((r.channel("gyro_x").time_s[1] - r.channel("accel_x").time_s[0]) * 1e9), 13'000);
+}
+
+TEST_F(Ros2Ulog, UlogDataAppendedAfterACutMessageIsRead) {
+  // The log stops inside a message; appended data follows at appended_offsets[0]. The
+  // reference reader stops at that offset (it reads no appended data): the first 200 samples
+  // match it, the 10 appended ones continue the 200 Hz series.
+  REQUIRE_REFERENCE();
+  const fs::path log = file("appended.ulg");
+  const Recording r = read_recording(log, topic("sensor_combined"));
+  ASSERT_EQ(r.sample_count(), 210u);
+  const auto ref = reference(log, "sensor_combined").at("channels");
+  ASSERT_EQ(ref.at("gyro_x").at("values").size(), 200u);
+  for (std::size_t i = 0; i < 200; ++i) {
+    ASSERT_EQ(r.channel("accel_z").values[i], ref.at("accel_z").at("values")[i].get<double>()) << i;
+  }
+  for (std::size_t i = 1; i < 210; ++i) ASSERT_EQ(std::llround((r.time_s[i] - r.time_s[i - 1]) * 1e9), 5'000'000) << i;
+  // Without the flag the cut message is the corruption it looks like.
+  std::string bytes = slurp(log);
+  bytes[16 + 3 + 8] = 0;
+  expect_input_error([&] { (void)read_ulog_buffer({reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()}, "noflag.ulg", "sensor_combined"); },
+                     {"noflag.ulg", "byte "});
+  // An incompatible flag this reader does not know is refused, as the specification asks.
+  bytes[16 + 3 + 8] = 2;
+  expect_input_error([&] { (void)read_ulog_buffer({reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()}, "newer.ulg", "sensor_combined"); },
+                     {"newer.ulg", "unknown incompatible flag bits"});
 }
 
 TEST_F(Ros2Ulog, UlogChannelsOfOneInstanceBecomeOneTimeAxisOthersAreRefused) {

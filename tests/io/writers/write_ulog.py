@@ -2,7 +2,7 @@
 """Writes a PX4 ULog test file from the published format specification
 (https://docs.px4.io/main/en/dev_log/ulog_file_format.html), independently of imunoise's reader.
 
-    write_ulog.py OUT.ulg N [SEED] [combined|relative]
+    write_ulog.py OUT.ulg N [SEED] [combined|relative|appended]
 
 The log holds, at 200 Hz for N samples: sensor_combined (one instance), sensor_gyro and
 sensor_accel (two instances, multi_id 0 and 1, sampled at different instants), vehicle_imu (two
@@ -14,7 +14,10 @@ IMU topic). Interleaved: information, parameters, log text ('L', 'C'), sync ('S'
 dropouts written. With "combined" (the 4.3 M-message benchmark log) only sensor_combined is
 written, with the dropouts. With "relative", sensor_combined's accelerometer is sampled 13 µs
 before the gyro (accelerometer_timestamp_relative -13) and every 50th message has no accelerometer
-data (RELATIVE_TIMESTAMP_INVALID, 0x7fffffff). Values are checked in the tests against the reference reader @foxglove/ulog.
+data (RELATIVE_TIMESTAMP_INVALID, 0x7fffffff). With "appended", the log stops in the middle of a
+sensor_combined message and 10 more samples follow as appended data (flag bit DATA_APPENDED,
+appended_offsets[0] = their start), as a logger that resumed after an interruption writes.
+Values are checked in the tests against the reference reader @foxglove/ulog.
 """
 import json
 import random
@@ -59,6 +62,7 @@ def main():
     rng = random.Random(int(sys.argv[3]) if len(sys.argv) > 3 else 7)
     combined_only = len(sys.argv) > 4 and sys.argv[4] == "combined"
     relative = len(sys.argv) > 4 and sys.argv[4] == "relative"
+    appended = len(sys.argv) > 4 and sys.argv[4] == "appended"
     combined = struct.Struct("<HBHQ3fIi3fI4B")
     f32 = lambda x: struct.unpack("<f", struct.pack("<f", x))[0]
     data = bytearray(MAGIC + bytes([1]) + struct.pack("<Q", 1_000_000))
@@ -121,6 +125,16 @@ def main():
         data += d("vehicle_acceleration", 0, struct.pack("<QQQHbQHb3f", t + 50, t - 90, t, 1, -1, t, 2, -2, *v(0.05)))
         if i % 20 == 0:
             data += d("vehicle_status", 0, struct.pack("<QBB", t, 2, 14))
+    if appended:
+        g, a = v(0.01), v(0.05)
+        cut = d("sensor_combined", 0, struct.pack("<Q3fIi3fI4B", t0 + 5000 * n, *g, 5000, 0, *a, 5000, 0, 0, 1, 1))
+        data += cut[:len(cut) // 2]
+        offset = len(data)
+        data[16 + 3 + 8] |= 1                               # incompat_flags[0] bit 0: DATA_APPENDED
+        data[16 + 3 + 16:16 + 3 + 24] = struct.pack("<Q", offset)  # appended_offsets[0]
+        for i in range(n, n + 10):
+            g, a = v(0.01), v(0.05)
+            data += d("sensor_combined", 0, struct.pack("<Q3fIi3fI4B", t0 + 5000 * i, *g, 5000, 0, *a, 5000, 0, 0, 1, 1))
     with open(out, "wb") as f:
         f.write(data)
     with open(out + ".json", "w") as f:
