@@ -1,6 +1,7 @@
 // libFuzzer target for the PX4 ULog reader: for any bytes the reader must either return a
-// recording or throw InputError; anything else (a crash, a sanitizer report, another
-// exception, a leak, a hang, memory beyond -rss_limit_mb) is a bug.
+// recording or throw InputError that says how to fix the input ("fix:"); anything else (a
+// crash, a sanitizer report, another exception, a message without a fix, a leak, a hang,
+// memory beyond -rss_limit_mb) is a bug.
 //
 // Input layout: byte 0 chooses the topic asked for (each IMU topic's layout and the
 // topic-listing refusal are explored), the rest is the file content. Seeds: fuzz/seeds_ulog/,
@@ -21,7 +22,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     const auto recording = imunoise::io::read_ulog_buffer(std::span(data + 1, size - 1), "fuzz", topic);
     (void)recording.sample_count();
-  } catch (const imunoise::InputError&) {
+  } catch (const imunoise::InputError& e) {
+    if (std::string_view(e.what()).find("fix:") == std::string_view::npos) __builtin_trap();
   }
   return 0;
 }

@@ -53,7 +53,9 @@ class Database {
     const int rc = sqlite3_open_v2(file_uri(path, !wal).c_str(), &raw,
                                    SQLITE_OPEN_READONLY | SQLITE_OPEN_URI | SQLITE_OPEN_NOMUTEX, nullptr);
     db_.reset(raw);
-    if (rc != SQLITE_OK) throw InputError(source_ + ": cannot open the database: " + error());
+    if (rc != SQLITE_OK) {
+      throw InputError(source_ + ": cannot open the database: " + error() + "; fix: check the path and permissions");
+    }
     // Read pages straight from the mapped file rather than copying them into SQLite's cache.
     sqlite3_exec(db_.get(), "PRAGMA mmap_size=1099511627776", nullptr, nullptr, nullptr);
   }
@@ -72,7 +74,8 @@ class Database {
         throw InputError(source_ + ": an SQLite database, but not a ROS 2 bag (" + e +
                          "; a bag has tables topics and messages); fix: give a rosbag2 .db3 file");
       }
-      throw InputError(source_ + ": cannot query the database: " + e);
+      throw InputError(source_ + ": cannot query the database: " + e +
+                       "; fix: the file is corrupt or cut short: copy it again (or 'sqlite3 FILE .recover')");
     }
     return s;
   }
@@ -190,14 +193,18 @@ Recording read_ros2_db3(const std::filesystem::path& path, std::string_view topi
   std::vector<fs::path> files{path};
   if (fs::is_directory(path)) {
     if (!fs::exists(path / "metadata.yaml")) {
-      throw InputError(source + ": a directory without metadata.yaml, so not a ROS 2 bag; fix: give the bag directory or a file");
+      throw InputError(source + ": a directory without metadata.yaml, so not a ROS 2 bag; fix: give the bag "
+                       "directory or a file");
     }
     const BagFiles bag = bag_files(path);
     if (!bag.compression.empty() && bag.compression != "none" && bag.compression != "\"\"") {
       throw InputError(source + ": the bag is compressed (compression_mode " + bag.compression +
                        "); fix: decompress it first: ros2 bag decompress");
     }
-    if (bag.files.empty()) throw InputError(source + ": metadata.yaml lists no bag files and the directory has no .db3 file; fix: give the directory the bag was recorded into");
+    if (bag.files.empty()) {
+      throw InputError(source + ": metadata.yaml lists no bag files and the directory has no .db3 file; fix: give "
+                       "the directory the bag was recorded into");
+    }
     if (bag.storage == "mcap" || bag.files.front().extension() == ".mcap") {
       if (bag.files.size() != 1) {
         throw InputError(fmt::format("{}: a bag split into {} MCAP files; fix: give one of them (or merge them with "

@@ -98,6 +98,18 @@ std::uint64_t u64_at(const unsigned char* p) {
   return v;
 }
 
+// Text from the file as it may be quoted in a message: bytes outside printable ASCII as \xNN
+// (a NUL would end the message early).
+std::string shown(std::string_view text) {
+  std::string out;
+  for (const char ch : text) {
+    const auto b = static_cast<unsigned char>(ch);
+    if (b >= 0x20 && b < 0x7f) out += ch;
+    else out += fmt::format("\\x{:02x}", b);
+  }
+  return out;
+}
+
 // Where a field the reader needs sits in a data message (after the msg_id).
 struct Slot {
   std::size_t offset = 0;
@@ -244,7 +256,8 @@ class UlogReader {
       if (item.empty()) continue;
       const auto space = item.find(' ');
       if (space == std::string_view::npos) {
-        throw InputError(fmt::format("{}: byte {}: format field '{}' is not 'type name' (corrupt)", source_, at, item));
+        throw InputError(fmt::format("{}: byte {}: format field '{}' is not 'type name'; fix: the log is corrupt, "
+                                     "copy it again", source_, at, shown(item)));
       }
       Field f;
       std::string_view type = item.substr(0, space);
@@ -257,7 +270,10 @@ class UlogReader {
           ok = type[i] >= '0' && type[i] <= '9' && n < 1'000'000;
           n = n * 10 + static_cast<std::size_t>(type[i] - '0');
         }
-        if (!ok) throw InputError(fmt::format("{}: byte {}: array size in '{}' is not a number (corrupt)", source_, at, item));
+        if (!ok) {
+          throw InputError(fmt::format("{}: byte {}: array size in '{}' is not a number; fix: the log is corrupt, "
+                                       "copy it again", source_, at, shown(item)));
+        }
         f.count = n;
         type = type.substr(0, bracket);
       }
@@ -302,7 +318,9 @@ class UlogReader {
       std::size_t one = size_of(f.base);
       if (f.base == Base::nested) {
         const auto inner = format_size(f.type, 1);
-        if (!inner) m.fail("format of field '" + f.name + "' (type " + f.type + ") is unknown or nests too deep (corrupt)");
+        if (!inner) {
+          m.fail("format of field '" + shown(f.name) + "' (type " + shown(f.type) + ") is unknown or nests too deep (corrupt)");
+        }
         one = *inner;
       }
       offset += one * f.count;
@@ -372,7 +390,7 @@ class UlogReader {
     decoder_[id] = nullptr;
     if (name != topic_ || !is_imu_topic(name)) return;
     const auto f = formats_.find(name);
-    if (f == formats_.end()) m.fail("subscription to " + name + " without its format ('F') message (corrupt)");
+    if (f == formats_.end()) m.fail("subscription to " + shown(name) + " without its format ('F') message (corrupt)");
     if (!layout_) layout_ = layout(f->second, m);
     decoder_[id] = &instances_[multi_id];
   }
@@ -394,7 +412,8 @@ class UlogReader {
     }
     const std::uint64_t time_us = u64_at(p + layout_->time.offset);
     if (time_us > std::uint64_t{std::numeric_limits<std::int64_t>::max()} / 1000) {
-      throw InputError(fmt::format("{}: byte {}: {} timestamp {} µs is beyond the year 2262 (corrupt)", source_, at,
+      throw InputError(fmt::format("{}: byte {}: {} timestamp {} µs is beyond the year 2262; fix: the log is "
+                                   "corrupt, copy it again", source_, at,
                                    topic_, time_us));
     }
     const auto time_ns = static_cast<std::int64_t>(time_us) * 1000;
@@ -436,7 +455,7 @@ class UlogReader {
     for (const auto& [name, t] : topics_) {
       std::string instances;
       for (const auto i : t.instances) instances += (instances.empty() ? "" : ",") + std::to_string(i);
-      streams.push_back({name, (is_imu_topic(name) ? "IMU, multi_id " : "multi_id ") + instances, counts[name]});
+      streams.push_back({shown(name), (is_imu_topic(name) ? "IMU, multi_id " : "multi_id ") + instances, counts[name]});
     }
     return describe_streams(streams, "topic");
   }
@@ -451,9 +470,9 @@ class UlogReader {
           ? "this log has none of the IMU topics read (sensor_combined, vehicle_imu, vehicle_angular_velocity, "
             "vehicle_acceleration, sensor_gyro, sensor_accel); enable one in the PX4 logger profile"
           : "pass --topic with one of " + readable;
-      const std::string what = topic_.empty() ? "no --topic given"
-                               : topics_.contains(topic_) && !is_imu_topic(topic_) ? "topic " + topic_ + " is not an IMU topic this reader knows"
-                               : "no topic " + topic_;
+      std::string what = "no topic " + topic_;
+      if (topic_.empty()) what = "no --topic given";
+      else if (topics_.contains(topic_)) what = "topic " + topic_ + " is not an IMU topic this reader knows";
       throw InputError(source_ + ": " + what + "; fix: " + fix + "; topics in the log:\n" + listing());
     }
     // Channels: gyro then accel, instance by instance; one instance: gyro_x..accel_z.

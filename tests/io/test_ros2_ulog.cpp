@@ -212,6 +212,7 @@ TEST_F(Ros2Ulog, Db3TruncatedOrCorruptedIsRefusedOrReadNeverCrash) {
       EXPECT_LE(r.sample_count(), 1500u);
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find("bad.db3"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("fix:"), std::string::npos) << e.what();
     }
   }
 }
@@ -356,6 +357,7 @@ TEST_F(Ros2Ulog, UlogCorruptedBytesAreRefusedOrReadNeverCrash) {
                              trial % 2 ? "vehicle_imu" : "sensor_combined");
     } catch (const InputError& e) {
       EXPECT_NE(std::string(e.what()).find("bad.ulg"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("fix:"), std::string::npos) << e.what();
     }
   }
 }
