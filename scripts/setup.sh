@@ -15,7 +15,7 @@ packages=(
   clang libclang-rt-14-dev
   python3-dev python3-numpy python3-pytest pybind11-dev python3-setuptools python3-venv python3-wheel python3-pip
   gnuplot-nox chromium fonts-dejavu-core
-  libhdf5-dev libbz2-dev liblz4-dev libzstd-dev libsqlite3-dev python3-h5py python3-rosbag python3-sensor-msgs
+  libhdf5-dev libbz2-dev liblz4-dev libzstd-dev zstd libsqlite3-dev python3-h5py python3-rosbag python3-sensor-msgs
   libopenmpi-dev openmpi-bin
 )
 # The report's Plotly.js comes from npm (web/package-lock.json); Debian's npm only when none is

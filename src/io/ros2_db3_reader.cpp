@@ -7,9 +7,13 @@
 //
 // Messages are read in rowid ranges on several connections at once (a range scan of the
 // table's B-tree each), then concatenated in rowid order, which is the order they were written.
+// A bag recorded with --compression-mode message holds each message as one zstd frame (with its
+// content size): decompressed before decoding.
 #include <sqlite3.h>
+#include <zstd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <fstream>
 #include <map>
 #include <memory>
@@ -136,14 +140,23 @@ void read_range(const fs::path& path, std::int64_t id, std::int64_t first, std::
   out.reserve(static_cast<std::size_t>(last - first + 1));
   detail::ImuSample sample;
   std::string error;
+  detail::Bytes plain;
   while (db.step(s.get())) {
     const auto* data = static_cast<const unsigned char*>(sqlite3_column_blob(s.get(), 1));
-    const auto size = static_cast<std::size_t>(sqlite3_column_bytes(s.get(), 1));
-    if (!detail::decode_cdr_imu({data, data == nullptr ? 0 : size}, sample, error)) {
-      const bool zstd = size >= 4 && data[0] == 0x28 && data[1] == 0xB5 && data[2] == 0x2F && data[3] == 0xFD;
-      throw InputError(fmt::format("{}: message {} ({} bytes): {}; fix: {}", db.source(), sqlite3_column_int64(s.get(), 0),
-                                   size, zstd ? "compressed with zstd (a bag recorded with --compression-mode message)" : error,
-                                   zstd ? "decompress the bag first: ros2 bag decompress" : "the bag is corrupt, copy it again"));
+    std::span<const unsigned char> message{data, data == nullptr ? 0 : static_cast<std::size_t>(sqlite3_column_bytes(s.get(), 1))};
+    if (message.size() >= 4 && data[0] == 0x28 && data[1] == 0xB5 && data[2] == 0x2F && data[3] == 0xFD) {
+      const std::string where = fmt::format("{}: message {} (zstd)", db.source(), sqlite3_column_int64(s.get(), 0));
+      const unsigned long long n = ZSTD_getFrameContentSize(message.data(), message.size());
+      if (n == ZSTD_CONTENTSIZE_ERROR || n == ZSTD_CONTENTSIZE_UNKNOWN) {
+        throw InputError(where + ": the zstd frame does not state its size; fix: decompress the bag first: "
+                         "ros2 bag decompress");
+      }
+      detail::decompress_zstd(message, n, where, plain);
+      message = plain.span();
+    }
+    if (!detail::decode_cdr_imu(message, sample, error)) {
+      throw InputError(fmt::format("{}: message {} ({} bytes): {}; fix: the bag is corrupt, copy it again",
+                                   db.source(), sqlite3_column_int64(s.get(), 0), message.size(), error));
     }
     out.push(sample);
   }
@@ -200,8 +213,11 @@ Recording read_ros2_db3(const std::filesystem::path& path, std::string_view topi
                        "directory or a file");
     }
     const BagFiles bag = bag_files(path);
-    if (!bag.compression.empty() && bag.compression != "none" && bag.compression != "\"\"") {
-      throw InputError(source + ": the bag is compressed (compression_mode " + bag.compression +
+    // Compressed messages are read (zstd frames); compressed files (.db3.zstd) are not.
+    std::string mode = bag.compression;
+    std::transform(mode.begin(), mode.end(), mode.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    if (!mode.empty() && mode != "none" && mode != "message") {
+      throw InputError(source + ": the bag's files are compressed (compression_mode " + bag.compression +
                        "); fix: decompress it first: ros2 bag decompress");
     }
     if (bag.files.empty()) {

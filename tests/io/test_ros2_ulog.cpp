@@ -73,7 +73,7 @@ class Ros2Ulog : public ::testing::Test {
     delete dir_;
     dir_ = nullptr;
   }
-  // bag_le, bag_be_split (directories), log.ulg.
+  // bag_le, bag_be_split, bag_zstd (directories), log.ulg, relative.ulg, appended.ulg.
   static fs::path file(const std::string& name) {
     const fs::path path = dir_->path() / name;
     if (fs::exists(path)) return path;
@@ -87,8 +87,9 @@ class Ros2Ulog : public ::testing::Test {
     } else {
       const bool big = name.find("be") != std::string::npos;
       const bool split = name.find("split") != std::string::npos;
+      const bool zstd = name.find("zstd") != std::string::npos;
       command = "/usr/bin/python3 " + (kWriters / "write_db3.py").string() + " " + path.string() + " 1500 " +
-                (big ? "be" : "le") + (split ? " split" : " one");
+                (big ? "be" : "le") + (split ? " split" : " one") + (zstd ? " 200 zstd" : "");
     }
     if (!run(command)) ADD_FAILURE() << "the writer failed: " << command;
     return path;
@@ -151,6 +152,18 @@ TEST_F(Ros2Ulog, Db3FromPythonSqliteReadsBackBitExactByDirectoryOrFile) {
   const fs::path be = file("bag_be_split");
   EXPECT_TRUE(fs::exists(be / "bag_be_split_1.db3"));
   expect_bit_exact(read_recording(be, topic("/imu")), be / "expected.f64", 1500);
+}
+
+TEST_F(Ros2Ulog, Db3WithZstdCompressedMessagesReadsBackBitExact) {
+  // Recorded with --compression-mode message: each message one zstd frame (by the zstd tool).
+  const fs::path bag = file("bag_zstd");
+  const Recording r = read_recording(bag, topic("/imu"));
+  expect_bit_exact(r, bag / "expected.f64", 1500);
+  // A corrupt frame is refused naming the message.
+  const fs::path db = bag / "bag_zstd_0.db3";
+  ASSERT_TRUE(run("/usr/bin/python3 -c \"import sqlite3; d = sqlite3.connect('" + db.string() +
+                  "'); d.execute('UPDATE messages SET data = substr(data, 1, 12) || zeroblob(40) WHERE id = 7'); d.commit()\""));
+  expect_input_error([&] { (void)read_recording(bag, topic("/imu")); }, {"bag_zstd_0.db3: message 7 (zstd)"});
 }
 
 TEST_F(Ros2Ulog, Db3MissingOrWrongTopicListsTopicsWithTypesAndCounts) {

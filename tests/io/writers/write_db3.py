@@ -2,7 +2,7 @@
 """Writes a ROS 2 bag in SQLite3 storage with Python's sqlite3 module and a CDR writer of its
 own (written here from the OMG CDR rules, independently of imunoise's decoder), for the io tests.
 
-usage: write_db3.py OUT N [le|be] [split|one] [RATE_HZ] [fast]
+usage: write_db3.py OUT N [le|be] [split|one] [RATE_HZ] [fast] [zstd]
 OUT is a bag directory (metadata.yaml + OUT_0.db3, and OUT_1.db3 with "split": the messages
 are divided between two files, as rosbag2 does with --max-bag-size). Tables as rosbag2's
 sqlite3 storage (schema version 4): topics(id, name, type, serialization_format,
@@ -13,12 +13,16 @@ big-endian) and /status (std_msgs/msg/String, 3 messages) and /temperature
 float64 rows [stamp_ns - first, gx, gy, gz, ax, ay, az], to OUT/expected.f64. With "fast"
 (the 4.3 M-message benchmark bag) every message has frame_id "imu_link" and is packed with one
 struct call (the same bytes as the field-by-field writer), and no expected.f64 is written.
+With "zstd" every message is compressed by the zstd command-line tool, one frame per message
+(rosbag2's --compression-mode message), and metadata.yaml says so.
 """
 import os
 import random
 import sqlite3
 import struct
+import subprocess
 import sys
+import tempfile
 
 
 class Cdr:
@@ -116,7 +120,8 @@ def main():
     big = len(sys.argv) > 3 and sys.argv[3] == "be"
     split = len(sys.argv) > 4 and sys.argv[4] == "split"
     rate = float(sys.argv[5]) if len(sys.argv) > 5 else 200.0
-    fast = len(sys.argv) > 6 and sys.argv[6] == "fast"
+    fast = "fast" in sys.argv[6:]
+    zstd = "zstd" in sys.argv[6:]
     pack_fixed = imu_fixed(big)
     os.makedirs(out, exist_ok=True)
     base = os.path.basename(os.path.normpath(out))
@@ -141,6 +146,18 @@ def main():
                 rows[k].append((3, stamp, temperature(stamp)))
             if not fast:
                 expected.write(struct.pack("<7d", float(stamp - start_ns), *g, *a))
+    if zstd:
+        # One zstd run over every message: each file becomes one frame (with its content size).
+        with tempfile.TemporaryDirectory() as tmp:
+            for k, r in enumerate(rows):
+                for j, (_, _, data) in enumerate(r):
+                    with open(os.path.join(tmp, "%d_%d" % (k, j)), "wb") as f:
+                        f.write(data)
+            subprocess.run(["zstd", "-q", "-19", "--rm"] + [os.path.join(tmp, x) for x in os.listdir(tmp)], check=True)
+            for k, r in enumerate(rows):
+                for j, (topic, stamp, _) in enumerate(r):
+                    with open(os.path.join(tmp, "%d_%d.zst" % (k, j)), "rb") as f:
+                        r[j] = (topic, stamp, f.read())
     for db, r in zip(dbs, rows):
         db.executemany("INSERT INTO messages (topic_id, timestamp, data) VALUES (?, ?, ?)", r)
         db.commit()
@@ -150,7 +167,7 @@ def main():
                 "  duration:\n    nanoseconds: %d\n  message_count: %d\n  relative_file_paths:\n" % (n * period_ns, n))
         for name in names:
             f.write("    - %s\n" % name)
-        f.write("  compression_format: \"\"\n  compression_mode: \"\"\n")
+        f.write("  compression_format: %s\n  compression_mode: %s\n" % (("zstd", "MESSAGE") if zstd else ('""', '""')))
 
 
 if __name__ == "__main__":
