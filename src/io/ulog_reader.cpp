@@ -133,19 +133,9 @@ struct Layout {
   std::size_t needed = 0;  // bytes of data a message must have
 };
 
-// The IMU topics and how their fields map to vectors.
-struct TopicRule {
-  std::string_view topic;
-  std::string_view what;  // for the listing
-};
-constexpr TopicRule kImuTopics[] = {
-    {"sensor_combined", "gyro_rad, accelerometer_m_s2"},
-    {"vehicle_imu", "delta_angle/dt, delta_velocity/dt"},
-    {"vehicle_angular_velocity", "xyz (gyro)"},
-    {"vehicle_acceleration", "xyz (accel)"},
-    {"sensor_gyro", "x y z (gyro)"},
-    {"sensor_accel", "x y z (accel)"},
-};
+// The IMU topics read (layout() maps their fields to vectors).
+constexpr std::string_view kImuTopics[] = {"sensor_combined", "vehicle_imu", "vehicle_angular_velocity",
+                                           "vehicle_acceleration", "sensor_gyro", "sensor_accel"};
 
 // One time series of three values for one instance (an instance of sensor_combined or
 // vehicle_imu has two: gyro and accel, each with its own time).
@@ -445,7 +435,7 @@ class UlogReader {
   }
 
   static bool is_imu_topic(std::string_view name) {
-    return std::any_of(std::begin(kImuTopics), std::end(kImuTopics), [&](const auto& r) { return r.topic == name; });
+    return std::find(std::begin(kImuTopics), std::end(kImuTopics), name) != std::end(kImuTopics);
   }
 
   std::string listing() const {
@@ -463,8 +453,8 @@ class UlogReader {
   Recording recording() {
     if (instances_.empty()) {
       std::string readable;
-      for (const auto& r : kImuTopics) {
-        if (topics_.contains(std::string(r.topic))) readable += (readable.empty() ? "" : ", ") + std::string(r.topic);
+      for (const auto t : kImuTopics) {
+        if (topics_.contains(std::string(t))) readable += (readable.empty() ? "" : ", ") + std::string(t);
       }
       const std::string fix = readable.empty()
           ? "this log has none of the IMU topics read (sensor_combined, vehicle_imu, vehicle_angular_velocity, "
