@@ -1,4 +1,5 @@
-// Reading IMU recordings from containers: a ROS 1 bag and an MCAP file of a 6 h, 200 Hz record
+// Reading IMU recordings from containers: a ROS 1 bag and an MCAP file (bench_containers.sh), or
+// a ROS 2 SQLite bag and a PX4 ULog (bench_ros2_ulog.sh), of a 6 h, 200 Hz record
 // (4.32 M sensor_msgs Imu messages) against the target of < 3 s each, with the
 // in-process baseline of reading the same file's bytes (read(2) into one buffer: what the page
 // cache and memory bandwidth allow). Files are written by the real writers

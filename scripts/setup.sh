@@ -15,7 +15,7 @@ packages=(
   clang libclang-rt-14-dev
   python3-dev python3-numpy python3-pytest pybind11-dev python3-setuptools python3-venv python3-wheel python3-pip
   gnuplot-nox chromium fonts-dejavu-core
-  libhdf5-dev libbz2-dev liblz4-dev libzstd-dev python3-h5py python3-rosbag python3-sensor-msgs
+  libhdf5-dev libbz2-dev liblz4-dev libzstd-dev zstd libsqlite3-dev python3-h5py python3-rosbag python3-sensor-msgs
   libopenmpi-dev openmpi-bin
   libopencv-dev
 )
@@ -44,6 +44,8 @@ fi
 # for a whole build, which includes the tests.
 if ((${#targets[@]} == 0)) && command -v npm >/dev/null; then
   (cd tests/io/mcap_writer && npm ci --no-audit --no-fund --loglevel=error)
+  # The ULog reader's tests check values against the reference reader @foxglove/ulog.
+  (cd tests/io/ulog_reader && npm ci --no-audit --no-fund --loglevel=error)
 fi
 cmake --preset "$preset" >/dev/null
 # Named targets only (the demo needs the CLI, not the ~150 test and benchmark programs).

@@ -116,10 +116,12 @@ void register_recording(py::module_& m) {
   py::class_<PyRecording>(m, "Recording", "A recording read by imunoise.read: named channels sharing one set of timestamps.")
       .def_property_readonly("source", [](const PyRecording& r) { return r.recording.source; })
       .def_property_readonly("format", [](const PyRecording& r) { return std::string(io::format_name(r.recording.format)); },
-                             "'ROS 1 bag', 'MCAP', 'HDF5', 'EuRoC CSV', 'text' or 'binary'")
+                             "'ROS 1 bag', 'ROS 2 bag (SQLite)', 'MCAP', 'PX4 ULog', 'HDF5', 'EuRoC CSV', 'text' or 'binary'")
       .def_property_readonly("stream", [](const PyRecording& r) { return r.recording.stream; },
                              "topic or dataset read ('' for text, binary, EuRoC)")
       .def_property_readonly("message_type", [](const PyRecording& r) { return r.recording.message_type; })
+      .def_property_readonly("notes", [](const PyRecording& r) { return r.recording.notes; },
+                             "what the reader found that you should know (e.g. PX4 logger dropouts)")
       .def_property_readonly("time_origin", [](const PyRecording& r) { return r.recording.time_origin; },
                              "the first timestamp as stored (e.g. '1403636579758555392 ns')")
       .def_property_readonly("channel_names", [](const PyRecording& r) {
@@ -180,8 +182,11 @@ void register_recording(py::module_& m) {
         R"(read(path, topic=None, dataset=None, time_dataset=None, column=None, time_column=None,
      binary=None, channels=1, rate=None) -> Recording
 
-Reads a recording: a ROS 1 bag or ROS 2 MCAP file (topic= of sensor_msgs Imu: channels gyro_x
-gyro_y gyro_z accel_x accel_y accel_z in rad/s and m/s^2, timestamps from header.stamp), an
+Reads a recording: a ROS 1 bag, ROS 2 bag (.db3 or its directory) or MCAP file (topic= of
+sensor_msgs Imu: channels gyro_x gyro_y gyro_z accel_x accel_y accel_z in rad/s and m/s^2,
+timestamps from header.stamp), a PX4 ULog (topic='sensor_combined', 'vehicle_imu',
+'sensor_gyro', ...: several instances give gyro0_x ...; choose one instance's channels with
+column=), an
 HDF5 file (dataset= 1-D or 2-D, time_dataset= optional), a EuRoC imu0/data.csv, a text file
 (column= names or indices, time_column=) or raw binary samples (binary='f32' etc., channels=,
 rate=). column= keeps only those channels. The rate comes from the timestamps (median

@@ -281,3 +281,33 @@ def test_mcap_written_by_the_reference_writer_reads_back_bit_for_bit(tmp_path):
     np.testing.assert_allclose(rec.time_s, expected[:, 0] * 1e-9, rtol=0, atol=1e-12)
     with pytest.raises(ValueError, match="/imu"):
         imunoise.read(path, topic="/nope")
+
+
+WRITERS = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "..", "tests", "io", "writers")
+
+
+def test_ros2_db3_bag_and_px4_ulog_read_like_the_other_containers(tmp_path):
+    """The ROS 2 SQLite bag and the PX4 log of the io tests' writers (tests/io/writers)."""
+    bag = str(tmp_path / "bag")
+    subprocess.run(["/usr/bin/python3", os.path.join(WRITERS, "write_db3.py"), bag, "1200"], check=True)
+    expected = np.fromfile(os.path.join(bag, "expected.f64"), dtype="<f8").reshape(-1, 7)
+    rec = imunoise.read(bag, topic="/imu")
+    assert rec.format == "ROS 2 bag (SQLite)" and rec.message_type == "sensor_msgs/msg/Imu"
+    np.testing.assert_array_equal(rec.to_array(), expected[:, 1:])  # bit for bit
+    np.testing.assert_array_equal(np.round(rec.time_s * 1e9), expected[:, 0])
+    assert rec.rate == pytest.approx(200.0)
+    with pytest.raises(ValueError, match="/temperature"):
+        imunoise.read(bag, topic="/imu/data")
+
+    log = str(tmp_path / "log.ulg")
+    subprocess.run(["/usr/bin/python3", os.path.join(WRITERS, "write_ulog.py"), log, "1000"], check=True)
+    combined = imunoise.read(log, topic="sensor_combined")
+    assert combined.format == "PX4 ULog" and len(combined) == 1000 and combined.rate == pytest.approx(200.0)
+    assert any("dropped data 2 times (45 ms in all)" in note for note in combined.notes)
+    one = imunoise.read(log, topic="sensor_gyro", column=["gyro1_x", "gyro1_y", "gyro1_z"])
+    assert one.channel_names == ["gyro1_x", "gyro1_y", "gyro1_z"] and one.to_array().shape == (1000, 3)
+    assert one.time_s[0] == pytest.approx(1.234e-3)  # instance 1 is sampled 1234 µs after instance 0
+    with pytest.raises(ValueError, match="sampled at different times"):
+        imunoise.read(log, topic="sensor_gyro")
+    with pytest.raises(ValueError, match="no topic sensor_mag"):
+        imunoise.read(log, topic="sensor_mag")

@@ -20,6 +20,8 @@ std::string_view format_name(RecordingFormat format) {
     case RecordingFormat::hdf5: return "HDF5";
     case RecordingFormat::ros1_bag: return "ROS 1 bag";
     case RecordingFormat::mcap: return "MCAP";
+    case RecordingFormat::ros2_db3: return "ROS 2 bag (SQLite)";
+    case RecordingFormat::ulog: return "PX4 ULog";
   }
   return "unknown";
 }
@@ -48,6 +50,11 @@ const Channel& Recording::channel(std::string_view name) const {
 }
 
 std::optional<RecordingFormat> detect_container(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) {
+    if (std::filesystem::exists(path / "metadata.yaml", ec)) return RecordingFormat::ros2_db3;
+    return std::nullopt;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path.string() + ": cannot open; fix: check the path and permissions");
   std::array<char, 64> head{};
@@ -56,6 +63,12 @@ std::optional<RecordingFormat> detect_container(const std::filesystem::path& pat
   if (h.starts_with("#ROSBAG V")) return RecordingFormat::ros1_bag;
   if (h.starts_with("\x89MCAP")) return RecordingFormat::mcap;
   if (h.starts_with("\x89HDF\r\n\x1a\n")) return RecordingFormat::hdf5;
+  if (h.starts_with(std::string_view("SQLite format 3\0", 16))) return RecordingFormat::ros2_db3;
+  if (h.starts_with("ULog\x01\x12\x35")) return RecordingFormat::ulog;
+  // By extension: the reader then says why the content is not what the name claims.
+  const auto ext = path.extension();
+  if (ext == ".ulg") return RecordingFormat::ulog;
+  if (ext == ".db3") return RecordingFormat::ros2_db3;
   // EuRoC/ASL: "#timestamp [ns],w_RS_S_x [rad s^-1],..." (optionally after a UTF-8 BOM).
   std::string_view line = h;
   if (line.starts_with("\xEF\xBB\xBF")) line.remove_prefix(3);
@@ -74,8 +87,8 @@ Recording read_recording(const std::filesystem::path& path, const RecordingOptio
                      std::string(option));
   };
   if (!format) {
-    throw InputError(source + ": not a ROS 1 bag, MCAP, HDF5 or EuRoC IMU file (no known magic number "
-                     "or header); fix: for text or raw binary samples drop --topic/--dataset");
+    throw InputError(source + ": not a ROS 1 bag, ROS 2 bag, MCAP, PX4 ULog, HDF5 or EuRoC IMU file (no known "
+                     "magic number or header); fix: for text or raw binary samples drop --topic/--dataset");
   }
   switch (*format) {
     case RecordingFormat::ros1_bag:
@@ -84,11 +97,16 @@ Recording read_recording(const std::filesystem::path& path, const RecordingOptio
       if (!options.time_dataset.empty()) refuse("--time-dataset", "HDF5");
       return *format == RecordingFormat::mcap ? read_mcap(path, options.topic)
                                               : read_ros1_bag(path, options.topic);
+    case RecordingFormat::ros2_db3:
+    case RecordingFormat::ulog:
+      if (!options.dataset.empty()) refuse("--dataset", "HDF5");
+      if (!options.time_dataset.empty()) refuse("--time-dataset", "HDF5");
+      return *format == RecordingFormat::ulog ? read_ulog(path, options.topic) : read_ros2_db3(path, options.topic);
     case RecordingFormat::hdf5:
-      if (!options.topic.empty()) refuse("--topic", "ROS bag and MCAP");
+      if (!options.topic.empty()) refuse("--topic", "ROS bag, MCAP and ULog");
       return read_hdf5(path, options.dataset, options.time_dataset);
     case RecordingFormat::euroc:
-      if (!options.topic.empty()) refuse("--topic", "ROS bag and MCAP");
+      if (!options.topic.empty()) refuse("--topic", "ROS bag, MCAP and ULog");
       if (!options.dataset.empty()) refuse("--dataset", "HDF5");
       return read_euroc(path);
     default:
@@ -107,6 +125,26 @@ std::string describe_streams(const std::vector<StreamInfo>& streams, std::string
            std::to_string(s.count) + (noun == "dataset" ? " rows\n" : " messages\n");
   }
   return out;
+}
+
+Recording select_channels(Recording recording, const std::vector<std::string>& names) {
+  std::vector<Channel> kept;
+  for (const auto& name : names) kept.push_back(recording.channel(name));
+  if (names.empty()) kept = std::move(recording.channels);
+  if (std::any_of(kept.begin(), kept.end(), [](const auto& c) { return !c.time_s.empty(); })) {
+    std::vector<double> time = recording.times(kept.front());
+    for (const auto& c : kept) {
+      if (recording.times(c) != time) {
+        throw InputError(recording.source + ": channels " + kept.front().name + " and " + c.name +
+                         " were sampled at different times (separate sensors); fix: choose the channels of one "
+                         "sensor (e.g. " + kept.front().name + " with its y and z)");
+      }
+    }
+    recording.time_s = std::move(time);
+    for (auto& c : kept) c.time_s.clear();
+  }
+  recording.channels = std::move(kept);
+  return recording;
 }
 
 Recording read_text_recording(const std::filesystem::path& path, std::vector<std::string> columns,

@@ -264,7 +264,7 @@ void load_text(const LoadOptions& options, Record& record, double to_si) {
                         std::move(temperature), options.keep_rates);
 }
 
-// A container recording (bag, MCAP, HDF5, EuRoC): one channel chosen by --column, its unit
+// A container recording (ROS 1/2 bag, MCAP, ULog, HDF5, EuRoC): one channel chosen by --column, its unit
 // from the file unless --units is given (and then they must agree), the rate from the
 // timestamps (checked like a text time column) or --rate.
 void load_container(const LoadOptions& options, Record& record) {
@@ -306,8 +306,18 @@ void load_container(const LoadOptions& options, Record& record) {
     unit = unit_of(options, record.kind, record.unit_given);
   }
   record.rate_unit = record.kind == InputKind::rate || !record.unit_given ? unit : derivative_unit(unit);
-  if (!recording.time_s.empty()) {
-    record.timing = checked_timing(recording.time_s, record.source, nullptr, gaps_allowed(options));
+  record.notes.insert(record.notes.end(), recording.notes.begin(), recording.notes.end());
+  const std::vector<double>& time_s = recording.times(channel);  // a PX4 sensor instance has its own
+  if (!time_s.empty()) {
+    try {
+      record.timing = checked_timing(time_s, record.source, nullptr, gaps_allowed(options));
+    } catch (const InputError& e) {
+      // A gap that the reader can explain (a PX4 logger dropout) says so.
+      if (recording.notes.empty()) throw;
+      std::string message = e.what();
+      for (const auto& note : recording.notes) message += "\n  note: " + note;
+      throw InputError(message);
+    }
     if (record.rate_hz > 0 && std::abs(record.timing->rate_hz / record.rate_hz - 1.0) > 0.01) {
       throw InputError(record.source + ": --rate " + fmt::format("{}", record.rate_hz) +
                        " Hz disagrees with the file's timestamps (" +

@@ -23,13 +23,8 @@ io::Recording read_container(const ChannelsOptions& options) {
   read.topic = options.topic;
   read.dataset = options.dataset;
   read.time_dataset = options.time_dataset;
-  io::Recording recording = io::read_recording(options.file, read);
-  if (!options.columns.empty()) {
-    std::vector<io::Channel> kept;
-    for (const auto& name : options.columns) kept.push_back(recording.channel(name));
-    recording.channels = std::move(kept);
-  }
-  return recording;
+  // One time axis for the channels kept (a PX4 log's sensor instances each have their own).
+  return io::select_channels(io::read_recording(options.file, read), options.columns);
 }
 
 io::Recording read_binary(const ChannelsOptions& options) {

@@ -3,7 +3,8 @@
 // gyro_x gyro_y gyro_z (rad/s) and accel_x accel_y accel_z (m/s^2) for ROS sensor_msgs Imu
 // messages, timed by header.stamp (integer ns), or the dataset's columns for HDF5.
 //
-// The bag and MCAP readers parse the documented formats themselves (ROS bag v2.0; MCAP v0)
+// The bag, MCAP and ULog readers parse the documented formats themselves (ROS bag v2.0; MCAP
+// v0; ULog v1; the ROS 2 SQLite bag is read with libsqlite3)
 // with bounds checks on every field: a corrupt, truncated or hostile file is an InputError
 // naming the file, the byte offset and the problem, never a crash (fuzzed: fuzz/). They read a
 // memory-mapped file, or a buffer (`*_buffer`, used by the fuzzers and tests).
@@ -36,6 +37,21 @@ Recording read_ros1_bag_buffer(std::span<const unsigned char> bytes, std::string
 /// encoding).
 Recording read_mcap(const std::filesystem::path& path, std::string_view topic);
 Recording read_mcap_buffer(std::span<const unsigned char> bytes, std::string_view source,
+                           std::string_view topic);
+
+/// ROS 2 bag in SQLite3 storage: a .db3 file, or the bag directory (metadata.yaml and its .db3
+/// files, read in the order metadata.yaml lists them). `topic`: a sensor_msgs/msg/Imu topic in
+/// CDR. The database is opened read-only (never written, not even a lock or journal file).
+Recording read_ros2_db3(const std::filesystem::path& path, std::string_view topic);
+
+/// PX4 ULog (.ulg). `topic`: sensor_combined, vehicle_imu (delta angle / velocity divided by
+/// their dt: rates), vehicle_angular_velocity, vehicle_acceleration, sensor_gyro or
+/// sensor_accel. One instance gives gyro_x.. / accel_x..; several (multi_id 0, 1, ...) give
+/// gyro0_x .. accel1_z, each instance with its own timestamps (Channel::time_s). Timestamps:
+/// timestamp_sample when the topic has it, else timestamp (µs). Logger dropouts are counted in
+/// Recording::notes.
+Recording read_ulog(const std::filesystem::path& path, std::string_view topic);
+Recording read_ulog_buffer(std::span<const unsigned char> bytes, std::string_view source,
                            std::string_view topic);
 
 /// HDF5: a 1-D (N) or 2-D (N x C) numeric dataset; `time_dataset` (optional) a 1-D dataset of

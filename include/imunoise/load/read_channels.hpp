@@ -15,10 +15,12 @@ namespace imunoise::load {
 
 struct ChannelsOptions {
   std::string file;
-  std::string topic;                 ///< ROS bag / MCAP topic
+  std::string topic;                 ///< ROS bag / MCAP / ULog topic
   std::string dataset;               ///< HDF5 dataset
   std::string time_dataset;          ///< HDF5 dataset of timestamps
   std::vector<std::string> columns;  ///< keep only these channels (names, or 0-based indexes); empty: all
+                                     ///< (channels sampled at different times, as a PX4 log's
+                                     ///< IMU instances, are refused together)
   std::string time_column;           ///< text: column of timestamps
   std::string binary;                ///< raw binary layout f32|f64|i16|i32[:le|be] ("": by extension)
   std::size_t channels = 1;          ///< interleaved channels of raw binary input
