@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Builds the `fuzz` preset and fuzzes the text, ROS 1 bag, MCAP and PX4 ULog readers, each for a bounded
+# Builds the `fuzz` preset and fuzzes the text, ROS 1 bag, MCAP, PX4 ULog and ROS 2 SQLite readers, each for a bounded
 # time.
 #   fuzz/run.sh [SECONDS]   (default 30; per target)
 # Each corpus grows in build/fuzz/corpus*, which starts as a copy of fuzz/seeds* (never modified).
@@ -17,7 +17,7 @@ root="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 cd "$root"
 
 cmake --preset fuzz >/dev/null
-cmake --build build/fuzz --target fuzz_text_reader fuzz_bag_reader fuzz_mcap_reader fuzz_ulog_reader -j2
+cmake --build build/fuzz --target fuzz_text_reader fuzz_bag_reader fuzz_mcap_reader fuzz_ulog_reader fuzz_db3_reader -j2
 
 artifacts="build/fuzz/artifacts"
 mkdir -p "$artifacts"
@@ -43,3 +43,4 @@ fuzz_one fuzz_text_reader fuzz/seeds build/fuzz/corpus 65536
 fuzz_one fuzz_bag_reader fuzz/seeds_bag build/fuzz/corpus_bag 131072
 fuzz_one fuzz_mcap_reader fuzz/seeds_mcap build/fuzz/corpus_mcap 131072
 fuzz_one fuzz_ulog_reader fuzz/seeds_ulog build/fuzz/corpus_ulog 131072
+fuzz_one fuzz_db3_reader fuzz/seeds_db3 build/fuzz/corpus_db3 65536
