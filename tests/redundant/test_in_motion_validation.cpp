@@ -10,6 +10,7 @@
 // sensor fits at 2000 s, 3 of 480 at 4000 s, 0 of 300 at 8000 s; 4000 s keeps the test near a
 // second. The failures are the fit's model selection trading K for B at the noisiest long taus.
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <string>
 
@@ -156,6 +157,58 @@ TEST(RedundantInMotionValidation, UnitChecksNameTheFiles) {
     FAIL();
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("5 recordings for the 6 sensors"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+
+namespace {
+
+// Monte Carlo coverage of the per-sensor 95 % intervals (white and random-walk noise, whose
+// Allan variance N^2 / tau + K^2 tau / 3 is the truth), over every tau of the octave grid.
+double coverage(const Geometry& g, int runs, double duration_s, std::vector<double>* per_tau) {
+  const auto models = varied_models(g.size());
+  InMotionOptions o;
+  o.ci_level = 0.95;
+  std::size_t hit = 0;
+  std::size_t total = 0;
+  std::vector<std::size_t> tau_hit;
+  std::size_t tau_runs = 0;
+  for (int run = 0; run < runs; ++run) {
+    const auto rec = simulate_unit(g, models, 100.0, duration_s, 5000 + static_cast<std::uint64_t>(run), tumbling);
+    const auto r = in_motion_noise(g, spans_of(rec), 100.0, o);
+    tau_hit.resize(r.points.size(), 0);
+    ++tau_runs;
+    for (std::size_t i = 0; i < g.size(); ++i) {
+      const double n = models[i].n_unit_sqrt_s * kDeg;
+      const double k = models[i].k_unit_per_sqrt_s * kDeg;
+      for (std::size_t q = 0; q < r.sensors[i].size(); ++q) {
+        const auto& p = r.sensors[i][q];
+        const double truth = std::sqrt(n * n / p.tau_s + k * k * p.tau_s / 3);
+        const bool in = p.ci_low <= truth && truth <= p.ci_high;
+        hit += in ? 1 : 0;
+        tau_hit[q] += in ? 1 : 0;
+        ++total;
+      }
+    }
+  }
+  if (per_tau != nullptr) {
+    per_tau->clear();
+    for (auto h : tau_hit) per_tau->push_back(static_cast<double>(h) / static_cast<double>(tau_runs * g.size()));
+  }
+  return static_cast<double>(hit) / static_cast<double>(total);
+}
+
+TEST(SlowInMotionCoverage, PerSensorIntervalsCoverTheTruth) {
+  for (const char* name : {"dodeca", "triads"}) {
+    const Geometry g = std::string(name) == "dodeca" ? make_geometry("dodeca") : co_aligned_triads();
+    std::vector<double> per_tau;
+    const double c = coverage(g, 200, 400.0, &per_tau);
+    std::printf("%s: 95 %% intervals cover %.3f; per tau:", name, c);
+    for (double x : per_tau) std::printf(" %.2f", x);
+    std::printf("\n");
+    EXPECT_GE(c, 0.90) << name;
+    EXPECT_LE(c, 0.98) << name;
   }
 }
 
