@@ -16,8 +16,10 @@
 #include "imunoise/redundant/analysis.hpp"
 #include "imunoise/redundant/fusion.hpp"
 #include "imunoise/redundant/geometry.hpp"
+#include "imunoise/redundant/in_motion.hpp"
 #include "imunoise/redundant/report.hpp"
 #include "imunoise/load/load.hpp"
+#include "imunoise/study/in_motion.hpp"
 #include "imunoise/study/sensor.hpp"
 #include "imunoise/units.hpp"
 #include "to_python.hpp"
@@ -98,6 +100,59 @@ py::array_t<double> owned_array(std::vector<double>&& v) {
   auto* owned = new std::vector<double>(std::move(v));
   py::capsule free_when_done(owned, [](void* p) { delete static_cast<std::vector<double>*>(p); });
   return py::array_t<double>(static_cast<py::ssize_t>(owned->size()), owned->data(), free_when_done);
+}
+
+// records: a 2-D array (sensors x samples) or a sequence of 1-D arrays, in `unit`, -> SI.
+std::vector<std::vector<double>> records_si(const py::object& records, const Unit& unit) {
+  std::vector<Array> arrays;
+  const Array as2d = py::isinstance<py::array>(records) ? Array::ensure(records) : Array();
+  if (as2d && as2d.ndim() == 2) {
+    for (py::ssize_t i = 0; i < as2d.shape(0); ++i) arrays.push_back(Array::ensure(records.attr("__getitem__")(i)));
+  } else {
+    for (const auto& r : records) arrays.push_back(Array::ensure(r));
+  }
+  std::vector<std::vector<double>> si;
+  for (std::size_t i = 0; i < arrays.size(); ++i) {
+    const auto& a = arrays[i];
+    if (!a || a.ndim() != 1) throw InputError("records[" + std::to_string(i) + "] must be a 1-D array");
+    std::vector<double> v(a.data(), a.data() + a.shape(0));
+    if (const std::size_t k = first_non_finite(v, 0); k < v.size()) {
+      throw InputError("records[" + std::to_string(i) + "]: sample " + std::to_string(k) + " is not finite");
+    }
+    for (auto& x : v) x *= unit.to_si;
+    si.push_back(std::move(v));
+  }
+  return si;
+}
+
+// The `in_motion` document of `imunoise redundant --in-motion` for arrays.
+py::object in_motion(const py::object& records, const std::string& geometry, double rate, const std::string& units,
+                     bool per_sensor, double ci) {
+  const auto g = redundant::make_geometry(geometry);
+  checked_rate_hz(rate);
+  const Unit unit = resolve_unit(units, Unit{}, false);
+  auto si = records_si(records, unit);
+  std::vector<Record> recs;
+  for (std::size_t i = 0; i < si.size(); ++i) {
+    Record r;
+    r.name = r.source = "records[" + std::to_string(i) + "]";
+    r.rate_hz = rate;
+    r.n_samples = si[i].size();
+    r.rate_unit = unit;
+    r.unit_given = !units.empty();
+    r.rate_si = std::move(si[i]);
+    recs.push_back(std::move(r));
+  }
+  redundant::InMotionOptions options;
+  options.require_per_sensor = per_sensor;
+  options.ci_level = ci;
+  const fit::FitOptions fit_options;
+  nlohmann::json doc;
+  {
+    py::gil_scoped_release release;
+    doc = study::in_motion_json(study::analyze_in_motion(g, std::move(recs), options, fit_options), fit_options);
+  }
+  return to_python(doc);
 }
 
 py::dict fuse(const py::object& records, const std::string& geometry, double rate, const std::string& units,
@@ -182,6 +237,13 @@ void register_redundant(py::module_& m) {
         "Redundant gyro unit: geometry ('tetra', 'cone:N:DEG', '3+1', 'dodeca' or a file), optionally "
         "each sensor's fit (dicts from imunoise.fit or fit JSON paths) -> the dict of "
         "`imunoise redundant --format json` (gains, GDOP, parity, fused-axis N/B/K, detection design)");
+  m.def("in_motion", &in_motion, py::arg("records"), py::arg("geometry"), py::arg("rate") = 1.0,
+        py::arg("units") = "", py::arg("per_sensor") = false, py::arg("ci") = 0.683,
+        "Each sensor's noise while the unit moves (the N-cornered hat in parity space): synchronous "
+        "records (sensors x samples, in `units`) through the geometry -> the dict of "
+        "`imunoise redundant --in-motion` (in_motion: identifiability, common level, sensors with "
+        "curve and fit, or identified False and the reason). per_sensor=True raises ValueError when "
+        "the geometry cannot give every sensor its own curve.");
   m.def("fuse", &fuse, py::arg("records"), py::arg("geometry"), py::arg("rate") = 1.0, py::arg("units") = "",
         py::arg("fits") = py::none(), py::arg("detect") = false, py::arg("window_s") = 1.0,
         py::arg("reference_s") = 60.0, py::arg("false_alarm_per_hour") = 0.01,
