@@ -40,6 +40,7 @@ struct RedundantOptionsCli {
   std::vector<std::string> fuse;
   std::vector<std::string> in_motion;   // --in-motion F1 ... Fn
   bool per_sensor = false;              // --per-sensor: refuse a geometry without per-sensor curves
+  bool keep_leakage = false;            // --keep-leakage: no regression on the fused motion
   double ci_level = 0.683;
   load::LoadOptions load;    // how each --fuse recording is read (file set per recording)
   std::string output;        // -o FUSED.csv
@@ -81,6 +82,7 @@ void run_in_motion(const RedundantOptionsCli& o, const redundant::Geometry& geom
   redundant::InMotionOptions options;
   options.require_per_sensor = o.per_sensor;
   options.ci_level = o.ci_level;
+  options.remove_leakage = !o.keep_leakage;
   const fit::FitOptions fit_options;
   const auto unit = study::analyze_in_motion(geometry, std::move(recs), options, fit_options);
   for (const auto& note : unit.notes) fmt::print(stderr, "imunoise: note: {}\n", note);
@@ -143,7 +145,7 @@ void run_redundant(RedundantOptionsCli& o) {
     run_in_motion(o, geometry, models.empty() ? nullptr : &unit);
     return;
   }
-  if (o.per_sensor) throw InputError("--per-sensor applies to --in-motion F1 ... Fn");
+  if (o.per_sensor || o.keep_leakage) throw InputError("--per-sensor and --keep-leakage apply to --in-motion F1 ... Fn");
   if (o.detect && o.fuse.empty()) throw InputError("--detect runs on recordings: add --fuse F1 ... Fn");
   if (!o.output.empty() && o.fuse.empty()) throw InputError("-o writes the fused recording: add --fuse F1 ... Fn");
 
@@ -206,6 +208,9 @@ void setup_redundant(CLI::App& app) {
                  "sensor's own noise from the parity space (the N-cornered hat) and its fit");
   c->add_flag("--per-sensor", o->per_sensor,
               "with --in-motion: fail (exit 1) when the geometry cannot give every sensor its own curve");
+  c->add_flag("--keep-leakage", o->keep_leakage,
+              "with --in-motion: do not remove the motion leaking into the parity (scale-factor and "
+              "misalignment errors, estimated by regression on the fused motion)");
   c->add_option("--ci", o->ci_level, "with --in-motion: confidence level of the intervals (0-1)")->capture_default_str();
   add_load_options(*c, o->load);
   c->add_option("-o,--output", o->output, "write the fused recording (CSV t_s,x,y,z,p1..pk) to FILE");

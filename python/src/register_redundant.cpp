@@ -127,7 +127,7 @@ std::vector<std::vector<double>> records_si(const py::object& records, const Uni
 
 // The `in_motion` document of `imunoise redundant --in-motion` for arrays.
 py::object in_motion(const py::object& records, const std::string& geometry, double rate, const std::string& units,
-                     bool per_sensor, double ci) {
+                     bool per_sensor, double ci, bool remove_leakage) {
   const auto g = redundant::make_geometry(geometry);
   checked_rate_hz(rate);
   const Unit unit = resolve_unit(units, Unit{}, false);
@@ -146,6 +146,7 @@ py::object in_motion(const py::object& records, const std::string& geometry, dou
   redundant::InMotionOptions options;
   options.require_per_sensor = per_sensor;
   options.ci_level = ci;
+  options.remove_leakage = remove_leakage;
   const fit::FitOptions fit_options;
   nlohmann::json doc;
   {
@@ -239,10 +240,12 @@ void register_redundant(py::module_& m) {
         "`imunoise redundant --format json` (gains, GDOP, parity, fused-axis N/B/K, detection design)");
   m.def("in_motion", &in_motion, py::arg("records"), py::arg("geometry"), py::arg("rate") = 1.0,
         py::arg("units") = "", py::arg("per_sensor") = false, py::arg("ci") = 0.683,
+        py::arg("remove_leakage") = true,
         "Each sensor's noise while the unit moves (the N-cornered hat in parity space): synchronous "
-        "records (sensors x samples, in `units`) through the geometry -> the dict of "
-        "`imunoise redundant --in-motion` (in_motion: identifiability, common level, sensors with "
-        "curve and fit, or identified False and the reason). per_sensor=True raises ValueError when "
+        "records (sensors x samples, in `units`) through the geometry -> the `in_motion` dict of "
+        "`imunoise redundant --in-motion` (identifiability, common level, leakage, sensors with curve, "
+        "fit and leakage, or identified False and the reason). remove_leakage=False keeps the motion "
+        "leaking through scale-factor and misalignment errors; per_sensor=True raises ValueError when "
         "the geometry cannot give every sensor its own curve.");
   m.def("fuse", &fuse, py::arg("records"), py::arg("geometry"), py::arg("rate") = 1.0, py::arg("units") = "",
         py::arg("fits") = py::none(), py::arg("detect") = false, py::arg("window_s") = 1.0,

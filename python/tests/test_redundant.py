@@ -112,3 +112,21 @@ def test_in_motion_bad_input_raises_value_error():
     recs[2] = recs[2][:-1]
     with pytest.raises(ValueError, match="synchronous"):
         imunoise.in_motion(recs, "dodeca", rate=100.0, units="deg/s")
+
+
+def test_in_motion_removes_scale_factor_leakage():
+    n_deg = [1e-3] * 6
+    recs = _tumbling_unit("dodeca", n_deg, duration=120.0)
+    h = np.array(imunoise.redundant("dodeca")["H"])
+    t = (np.arange(12000) + 0.5) / 100.0
+    recs[0] = recs[0] + 1e-3 * (h[0] @ (200.0 * np.stack([np.sin(np.pi * t), np.sin(2 * np.pi * 0.31 * t + 1),
+                                                             np.sin(2 * np.pi * 0.17 * t + 2)])))
+    kept = imunoise.in_motion(recs, "dodeca", rate=100.0, units="deg/s", remove_leakage=False)
+    clean = imunoise.in_motion(recs, "dodeca", rate=100.0, units="deg/s")
+    assert not kept["leakage"]["removed"] and clean["leakage"]["removed"]
+    q = 7  # tau = 1.28 s
+    truth = 1e-3 / math.sqrt(1.28)
+    assert kept["sensors"][0]["curve"]["points"][q]["adev"] > 10 * truth
+    assert clean["sensors"][0]["curve"]["points"][q]["adev"] == pytest.approx(truth, rel=0.2)
+    # The dodecahedron's P_11 = 1/2: 1000 ppm on sensor 1 shows as 500 ppm relative to the unit's frame.
+    assert clean["sensors"][0]["leakage"]["scale_factor_ppm"] == pytest.approx(500, abs=10)

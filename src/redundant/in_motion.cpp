@@ -156,6 +156,60 @@ DevPoint deviation_point(std::size_t m, double tau_s, std::size_t n_terms, int a
   return p;
 }
 
+// Regresses every parity channel on the fused motion (with an intercept) and removes the fit.
+// weights: the fusion weights (1 / white-noise variance per sensor).
+Leakage remove_motion_leakage(const MatrixXd& h, const MatrixXd& v, const VectorXd& weights,
+                              std::span<const std::span<const double>> sensors, std::vector<std::vector<double>>& parity) {
+  const Index n = h.rows();
+  const Index c = h.cols();
+  const Index k = v.rows();
+  const std::size_t len = parity.empty() ? 0 : parity[0].size();
+  const MatrixXd g = (h.transpose() * weights.asDiagonal() * h).ldlt().solve(h.transpose() * weights.asDiagonal());
+  // Normal equations of [1, w^] for all channels at once, accumulated in one pass.
+  MatrixXd xtx = MatrixXd::Zero(c + 1, c + 1);
+  MatrixXd xty = MatrixXd::Zero(c + 1, k);
+  VectorXd row(c + 1);
+  VectorXd mi(n);
+  std::vector<double> fused(len * static_cast<std::size_t>(c));
+  for (std::size_t t = 0; t < len; ++t) {
+    for (Index i = 0; i < n; ++i) mi(i) = sensors[static_cast<std::size_t>(i)][t];
+    const VectorXd w = g * mi;
+    row(0) = 1.0;
+    row.tail(c) = w;
+    for (Index a = 0; a < c; ++a) fused[t * static_cast<std::size_t>(c) + static_cast<std::size_t>(a)] = w(a);
+    xtx.selfadjointView<Eigen::Lower>().rankUpdate(row);
+    for (Index j = 0; j < k; ++j) xty.col(j) += row * parity[static_cast<std::size_t>(j)][t];
+  }
+  xtx = xtx.selfadjointView<Eigen::Lower>();
+  Leakage out;
+  const double count = static_cast<double>(len);
+  VectorXd mean_w = xtx.block(1, 0, c, 1) / count;
+  const MatrixXd cov_w = xtx.block(1, 1, c, c) / count - mean_w * mean_w.transpose();
+  out.motion_rms_rad_s = std::sqrt(std::max(0.0, cov_w.trace()));
+  const MatrixXd beta = xtx.ldlt().solve(xty);  // (c + 1) x k
+  const MatrixXd b = beta.bottomRows(c).transpose();  // k x c
+  for (std::size_t t = 0; t < len; ++t) {
+    for (Index j = 0; j < k; ++j) {
+      double s = 0.0;
+      for (Index a = 0; a < c; ++a) s += b(j, a) * fused[t * static_cast<std::size_t>(c) + static_cast<std::size_t>(a)];
+      parity[static_cast<std::size_t>(j)][t] -= s;
+    }
+  }
+  out.removed = true;
+  out.coefficients = from_eigen(b);
+  const MatrixXd d = v.transpose() * b;  // n x c, minimum norm
+  for (Index i = 0; i < n; ++i) {
+    std::vector<double> di(static_cast<std::size_t>(c));
+    for (Index a = 0; a < c; ++a) di[static_cast<std::size_t>(a)] = d(i, a);
+    out.relative_error.push_back(std::move(di));
+    const VectorXd hi = h.row(i).transpose().normalized();
+    const double along = d.row(i).dot(hi.transpose());
+    out.scale_factor_ppm.push_back(1e6 * along);
+    out.misalignment_mrad.push_back(c >= 3 ? 1e3 * (d.row(i).transpose() - along * hi).norm() : 0.0);
+  }
+  return out;
+}
+
 }  // namespace
 
 std::vector<double> nonnegative_least_squares(const Matrix& a, std::span<const double> b) {
@@ -318,6 +372,28 @@ InMotionResult in_motion_noise(const Matrix& measurement, std::span<const std::s
     std::vector<std::span<double>> out;
     for (auto& p : parity) out.emplace_back(p);
     apply_rows(r.parity, sensors_si, out);
+  }
+  if (options.remove_leakage) {
+    // Fusion weights: each sensor's white-noise level, its in-motion Allan variance at tau0 (the
+    // unweighted solution at m = 1); equal weights when the geometry cannot tell them apart.
+    const MatrixXd hh = to_eigen(measurement);
+    VectorXd weights = VectorXd::Ones(static_cast<Index>(n));
+    if (r.identifiability.per_sensor) {
+      std::vector<std::vector<double>> ph1(k);
+      std::vector<std::span<const double>> sp1;
+      for (std::size_t j = 0; j < k; ++j) {
+        ph1[j] = phase_from_rate(parity[j], tau0, compensated_mean(parity[j]));
+        sp1.emplace_back(ph1[j]);
+      }
+      // The leakage inflates this estimate alike for the sensors the motion reaches; it only
+      // sets the weights, which need to be right to a factor, not exactly.
+      const MatrixXd c1 = to_eigen(allan_covariance(sp1, tau0, 1));
+      const double s1 = c1.trace() / static_cast<double>(k);
+      const VectorXd a1 = nnls(design(to_eigen(r.parity)), vech(c1) / (s1 > 0 ? s1 : 1.0));
+      const double floor = std::max(1e-12, 1e-3 * a1.mean());
+      for (Index i = 0; i < weights.size(); ++i) weights(i) = 1.0 / std::max(a1(i), floor);
+    }
+    r.leakage = remove_motion_leakage(hh, to_eigen(r.parity), weights, sensors_si, parity);
   }
   std::vector<std::vector<double>> phase(k);
   for (std::size_t j = 0; j < k; ++j) phase[j] = phase_from_rate(parity[j], tau0, compensated_mean(parity[j]));

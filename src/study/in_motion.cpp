@@ -150,10 +150,30 @@ nlohmann::json in_motion_json(const InMotionUnit& unit, const fit::FitOptions& f
                                    "sum_i w_i a_i; each sensor's Allan deviation only if all have the same noise"},
                    {"weights", id.common_weights},
                    {"points", points_json(r.common, to_unit, false)}};
+  const auto& lk = r.leakage;
+  const char* convention =
+      "minimum-norm errors D = V^T B: relative to the unit's best-fit frame (an error common to the unit, "
+      "a distortion H X of its frame, does not reach the parity)";
+  if (lk.removed) {
+    std::vector<std::vector<double>> b(lk.coefficients.rows, std::vector<double>(lk.coefficients.cols));
+    for (std::size_t j = 0; j < lk.coefficients.rows; ++j) {
+      for (std::size_t a = 0; a < lk.coefficients.cols; ++a) b[j][a] = lk.coefficients(j, a);
+    }
+    doc["leakage"] = {{"removed", true},
+                      {"coefficients", b},
+                      {"motion_rms", number(lk.motion_rms_rad_s / to_unit)},
+                      {"convention", convention}};
+  } else {
+    doc["leakage"] = {{"removed", false}};
+  }
   auto sensors = nlohmann::json::array();
   for (std::size_t i = 0; i < unit.sensors.size(); ++i) {
     const auto& s = unit.sensors[i];
     nlohmann::json j{{"source", s.record.source}, {"identified", s.identified}};
+    if (lk.removed) {
+      j["leakage"] = {{"scale_factor_ppm", number(lk.scale_factor_ppm[i])},
+                      {"misalignment_mrad", number(lk.misalignment_mrad[i])}};
+    }
     if (!s.identified) {
       j["reason"] = s.reason;
     } else {
@@ -187,6 +207,14 @@ std::string in_motion_table(const InMotionUnit& unit) {
       unit.geometry.name, id.sensors, id.parity_channels, id.equations, id.rank, r.samples, r.rate_hz,
       100 * r.ci_level);
   if (!id.per_sensor) out += "# per-sensor curves not identified: " + id.reason + "\n";
+  if (r.leakage.removed) {
+    out += fmt::format("# motion leakage removed (fused motion RMS {:.6g} {}); per-sensor errors relative to the "
+                       "unit's best-fit frame:\n", r.leakage.motion_rms_rad_s / to_unit, label);
+    for (std::size_t i = 0; i < r.leakage.scale_factor_ppm.size(); ++i) {
+      out += fmt::format("#   sensor {}: scale factor {:.6g} ppm, misalignment {:.6g} mrad\n", i + 1,
+                         r.leakage.scale_factor_ppm[i], r.leakage.misalignment_mrad[i]);
+    }
+  }
   const auto units = fit::coefficient_units(label);
   for (std::size_t i = 0; i < unit.sensors.size(); ++i) {
     const auto& s = unit.sensors[i];

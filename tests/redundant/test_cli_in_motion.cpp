@@ -66,8 +66,12 @@ TEST(CliRedundantInMotion, SixGyroUnitGivesEverySensorItsCurveAndFit) {
   EXPECT_TRUE(im["identifiability"]["per_sensor"].get<bool>());
   EXPECT_EQ(im["identifiability"]["rank"], 6);
   ASSERT_EQ(im["sensors"].size(), 6u);
+  EXPECT_TRUE(im["leakage"]["removed"].get<bool>());
+  EXPECT_EQ(im["leakage"]["coefficients"].size(), 3u);
   for (std::size_t i = 0; i < 6; ++i) {
     const auto& s = im["sensors"][i];
+    // Perfect sensors: what leaks is the regression's noise, a few ppm at most.
+    EXPECT_LT(std::abs(s["leakage"]["scale_factor_ppm"].get<double>()), 20.0) << s.dump();
     EXPECT_EQ(s["source"], files[i]);
     ASSERT_TRUE(s["identified"].get<bool>());
     const auto& p0 = s["curve"]["points"][0];

@@ -55,6 +55,30 @@ struct InMotionOptions {
   /// curve, instead of returning only the identifiable combination.
   bool require_per_sensor = false;
   int gls_iterations = 3;  ///< re-weightings of the generalised least squares (>= 1)
+  /// Estimate the motion leaking into the parity (scale-factor and misalignment errors) by
+  /// regression on the fused motion and remove it before the noise analysis (Leakage).
+  bool remove_leakage = true;
+};
+
+/// The motion leaking into the parity through the sensors' scale-factor and misalignment
+/// errors. Sensor i measuring (h_i + d_i) . w leaks p = V D w (D rows d_i). Each parity channel
+/// is regressed on the fused motion w^ = G m (with an intercept), G weighted by the sensors'
+/// white noise (their in-motion Allan variance at tau0; equal weights when not identifiable):
+/// then the parity noise V e is uncorrelated with the fused noise G e (V R G^T = V H (...) = 0),
+/// so a recording at rest gives coefficients ~ 0 instead of absorbing noise. The fitted B = V D
+/// (k x c) is removed: p <- p - B w^.
+/// What the parity sees of D is only its component in V's row space: D and D + H X (any c x c
+/// X, a distortion of the whole unit's frame) leak alike. The per-sensor figures are therefore
+/// those of the minimum-norm D^ = V^T B = P D (P = V^T V), "relative to the unit's best-fit
+/// frame": a single sensor's 1000 ppm on the dodecahedral unit shows as P_ii 1000 = 500 ppm on
+/// it and the rest spread over the others (tests/redundant/test_in_motion_validation.cpp).
+struct Leakage {
+  bool removed = false;
+  Matrix coefficients;                     ///< B (k x c): parity per unit body rate
+  std::vector<std::vector<double>> relative_error;  ///< rows of D^ = V^T B (n x c)
+  std::vector<double> scale_factor_ppm;    ///< 1e6 d^_i . h_i (c = 3), or 1e6 d^_i (c = 1)
+  std::vector<double> misalignment_mrad;   ///< 1e3 |d^_i - (d^_i . h_i) h_i| (0 when c < 3)
+  double motion_rms_rad_s = 0.0;           ///< RMS of the fused motion (minus its mean)
 };
 
 /// What a parity space can identify about its sensors' Allan variances.
@@ -110,6 +134,7 @@ struct InMotionResult {
   std::vector<std::vector<DevPoint>> sensors;
   /// sqrt(trace(C) / k) per tau with its interval (EDF k nu): the weighted mean level.
   std::vector<DevPoint> common;
+  Leakage leakage;                ///< removed when options.remove_leakage
   std::vector<std::string> notes;
 };
 

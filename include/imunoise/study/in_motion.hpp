@@ -62,7 +62,9 @@ InMotionUnit analyze_in_motion(const redundant::Geometry& geometry, std::vector<
 
 /// The `in_motion` document: geometry, rate_hz, samples, unit, identifiability {sensors,
 /// parity_channels, equations, rank, per_sensor, reason, unobservable}, common {description,
-/// weights, points[{tau_s, adev, edf, ci_low, ci_high}]}, sensors[{source, identified, reason |
+/// weights, points[{tau_s, adev, edf, ci_low, ci_high}]}, leakage {removed, coefficients (B),
+/// motion_rms, convention}, sensors[{source, identified, leakage {scale_factor_ppm,
+/// misalignment_mrad}, reason |
 /// curve {unit, ci_level, points[{m, tau_s, adev, n, edf, ci_low, ci_high}]}, fit (the
 /// `imunoise fit` document) | fit_error}], notes. Deviations in the recordings' unit.
 nlohmann::json in_motion_json(const InMotionUnit& unit, const fit::FitOptions& fit_options);
