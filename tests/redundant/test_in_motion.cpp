@@ -122,7 +122,12 @@ TEST(RedundantInMotion, IdentifiabilityPerGeometry) {
   ASSERT_EQ(tetra.common_weights.size(), 4u);
   for (double w : tetra.common_weights) EXPECT_NEAR(w, 0.25, 1e-12);  // the plain mean of the four
 
+  const auto three_one = id_of(make_geometry("3+1"));
+  EXPECT_EQ(three_one.rank, 1u);
+  EXPECT_FALSE(three_one.per_sensor);
+  EXPECT_EQ(id_of(make_geometry("cone:8:40")).rank, 8u);
   const auto five = id_of(make_geometry("cone:5:54.7356"));
+  EXPECT_EQ(five.rank, 3u);
   EXPECT_EQ(five.equations, 3u);
   EXPECT_FALSE(five.per_sensor);
 

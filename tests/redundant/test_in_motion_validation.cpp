@@ -88,6 +88,7 @@ void expect_recovered(const Geometry& g, std::uint64_t seed) {
     const double k_true = models[i].k_unit_per_sqrt_s * kDeg;
     const double n_fit = s.fit->coefficients.random_walk.value;
     const double k_fit = s.fit->coefficients.rate_random_walk.value;
+    std::printf("%s sensor %zu: fitted / true N %.4f, K %.4f\n", g.name.c_str(), i + 1, n_fit / n_true, k_fit / k_true);
     EXPECT_NEAR(n_fit / n_true, 1.0, 0.05) << g.name << " sensor " << i + 1;
     EXPECT_NEAR(k_fit / k_true, 1.0, 0.30) << g.name << " sensor " << i + 1;
   }
