@@ -39,6 +39,7 @@ struct RedundantOptionsCli {
   std::vector<std::string> from;
   std::vector<std::string> fuse;
   std::vector<std::string> in_motion;   // --in-motion F1 ... Fn
+  std::vector<std::string> statics;     // --static S1 ... Sn: the same sensors at rest
   bool per_sensor = false;              // --per-sensor: refuse a geometry without per-sensor curves
   bool keep_leakage = false;            // --keep-leakage: no regression on the fused motion
   double ci_level = 0.683;
@@ -84,7 +85,12 @@ void run_in_motion(const RedundantOptionsCli& o, const redundant::Geometry& geom
   options.ci_level = o.ci_level;
   options.remove_leakage = !o.keep_leakage;
   const fit::FitOptions fit_options;
-  const auto unit = study::analyze_in_motion(geometry, std::move(recs), options, fit_options);
+  auto unit = study::analyze_in_motion(geometry, std::move(recs), options, fit_options);
+  if (!o.statics.empty()) {
+    std::vector<Record> statics;
+    for (const auto& f : o.statics) statics.push_back(read_recording(o, f, fits_unit));
+    study::compare_with_static(unit, std::move(statics), fit_options);
+  }
   for (const auto& note : unit.notes) fmt::print(stderr, "imunoise: note: {}\n", note);
   std::string text;
   if (o.format == "json") {
@@ -145,7 +151,9 @@ void run_redundant(RedundantOptionsCli& o) {
     run_in_motion(o, geometry, models.empty() ? nullptr : &unit);
     return;
   }
-  if (o.per_sensor || o.keep_leakage) throw InputError("--per-sensor and --keep-leakage apply to --in-motion F1 ... Fn");
+  if (o.per_sensor || o.keep_leakage || !o.statics.empty()) {
+    throw InputError("--per-sensor, --keep-leakage and --static apply to --in-motion F1 ... Fn");
+  }
   if (o.detect && o.fuse.empty()) throw InputError("--detect runs on recordings: add --fuse F1 ... Fn");
   if (!o.output.empty() && o.fuse.empty()) throw InputError("-o writes the fused recording: add --fuse F1 ... Fn");
 
@@ -206,6 +214,9 @@ void setup_redundant(CLI::App& app) {
   c->add_option("--in-motion", o->in_motion,
                  "synchronous recordings taken while the unit moves, one per axis, in order: each "
                  "sensor's own noise from the parity space (the N-cornered hat) and its fit");
+  c->add_option("--static", o->statics,
+                 "with --in-motion: the same sensors' recordings at rest, in the same order: their fits and "
+                 "the in-motion/static ratio of N, B, K");
   c->add_flag("--per-sensor", o->per_sensor,
               "with --in-motion: fail (exit 1) when the geometry cannot give every sensor its own curve");
   c->add_flag("--keep-leakage", o->keep_leakage,

@@ -7,6 +7,7 @@
 #include <fmt/ranges.h>
 
 #include "imunoise/confidence/edf.hpp"
+#include "imunoise/confidence/interval.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/fit/report.hpp"
 #include "imunoise/study/fit_stage.hpp"
@@ -128,6 +129,49 @@ InMotionUnit analyze_in_motion(const redundant::Geometry& geometry, std::vector<
   return unit;
 }
 
+Inflation coefficient_ratio(const Coefficient& in_motion, const Coefficient& at_rest, double level) {
+  Inflation out;
+  if (!in_motion.identified || !at_rest.identified) {
+    out.reason = in_motion.identified ? "not identified at rest" : "not identified in motion";
+    return out;
+  }
+  if (!(in_motion.ci_low > 0) || !(at_rest.ci_low > 0) || !(at_rest.value > 0) || !(in_motion.value > 0)) {
+    out.reason = "an interval reaches 0: the ratio has no upper bound";
+    return out;
+  }
+  const double z = std::sqrt(chi2_quantile(level, 1.0));
+  const double sa = std::log(in_motion.ci_high / in_motion.ci_low) / (2 * z);
+  const double sb = std::log(at_rest.ci_high / at_rest.ci_low) / (2 * z);
+  const double s = std::hypot(sa, sb);
+  out.available = true;
+  out.ratio = in_motion.value / at_rest.value;
+  out.ci_low = out.ratio * std::exp(-z * s);
+  out.ci_high = out.ratio * std::exp(z * s);
+  return out;
+}
+
+void compare_with_static(InMotionUnit& unit, std::vector<Record> static_recordings,
+                         const fit::FitOptions& fit_options) {
+  if (static_recordings.size() != unit.sensors.size()) {
+    throw InputError(fmt::format("--static: {} recordings for the {} sensors; give each sensor's static recording, "
+                                 "in the order of --in-motion", static_recordings.size(), unit.sensors.size()));
+  }
+  for (std::size_t i = 0; i < unit.sensors.size(); ++i) {
+    auto& s = unit.sensors[i];
+    s.static_fit = fit_channel(static_recordings[i], fit_options);
+    Record description = std::move(static_recordings[i]);
+    description.phase_si = {};
+    description.rate_si = {};
+    s.static_record = std::move(description);
+    if (!s.fit) continue;
+    for (int term : {fit::kN, fit::kB, fit::kK}) {
+      s.inflation.emplace_back(term, coefficient_ratio(fit::coefficient(s.fit->coefficients, term),
+                                                       fit::coefficient(s.static_fit->coefficients, term),
+                                                       fit_options.level));
+    }
+  }
+}
+
 nlohmann::json in_motion_json(const InMotionUnit& unit, const fit::FitOptions& fit_options) {
   const auto& r = unit.result;
   const auto& id = r.identifiability;
@@ -181,6 +225,16 @@ nlohmann::json in_motion_json(const InMotionUnit& unit, const fit::FitOptions& f
                     {"unit", unit_label(s.record)},
                     {"ci_level", r.ci_level},
                     {"points", points_json(r.sensors[i], s.record.rate_unit.to_si, true)}};
+      if (s.static_fit) {
+        j["static_fit"] = fit::report_json(record_info(*s.static_record), fit_options, *s.static_fit);
+        nlohmann::json inflation = nlohmann::json::object();
+        for (const auto& [term, ratio] : s.inflation) {
+          inflation[fit::term_name(term)] =
+              ratio.available ? nlohmann::json{{"ratio", ratio.ratio}, {"ci_low", ratio.ci_low}, {"ci_high", ratio.ci_high}}
+                              : nlohmann::json{{"ratio", nullptr}, {"reason", ratio.reason}};
+        }
+        j["inflation"] = std::move(inflation);
+      }
       if (s.fit) {
         j["fit"] = fit::report_json(record_info(s.record), fit_options, *s.fit);
       } else {
@@ -227,6 +281,11 @@ std::string in_motion_table(const InMotionUnit& unit) {
         out += fmt::format("  {:<2} {:>13.6g} [{:.6g}, {:.6g}] {}{}\n", fit::term_name(term), c.value / to_unit,
                            c.ci_low / to_unit, c.ci_high / to_unit, units[static_cast<std::size_t>(term)],
                            c.identified ? "" : " (not identified)");
+      }
+      for (const auto& [term, ratio] : s.inflation) {
+        out += ratio.available ? fmt::format("  {} in motion / at rest {:.4g} [{:.4g}, {:.4g}]\n", fit::term_name(term),
+                                             ratio.ratio, ratio.ci_low, ratio.ci_high)
+                               : fmt::format("  {} in motion / at rest: {}\n", fit::term_name(term), ratio.reason);
       }
     } else {
       out += " no fit: " + s.reason + "\n";

@@ -84,6 +84,33 @@ TEST(CliRedundantInMotion, SixGyroUnitGivesEverySensorItsCurveAndFit) {
     EXPECT_NEAR(s["fit"]["terms"]["N"]["value"].get<double>(), n_deg[i], 0.05 * n_deg[i]) << i;
     EXPECT_EQ(s["fit"]["terms"]["N"]["unit"], "deg/sqrt(s)");
   }
+  // The same sensors at rest: their fits and the in-motion / static ratio (here ~1: the same noise).
+  std::vector<std::string> statics;
+  for (std::size_t i = 0; i < 6; ++i) {
+    sim::NoiseModel m;
+    m.n_unit_sqrt_s = n_deg[i];
+    std::string text;
+    for (double v : sim::simulate(m, 100.0, 60000, 99, i)) text += fmt::format("{:.17g}\n", v);
+    statics.push_back(dir.write(fmt::format("static_{}.txt", i + 1), text));
+  }
+  auto with_static = in_motion_args("dodeca", files);
+  with_static.emplace_back("--static");
+  with_static.insert(with_static.end(), statics.begin(), statics.end());
+  const auto st = run_cli(with_static);
+  ASSERT_EQ(st.exit_code, 0) << st.err;
+  const auto sj = nlohmann::json::parse(st.out)["in_motion"]["sensors"];
+  for (std::size_t i = 0; i < 6; ++i) {
+    EXPECT_EQ(sj[i]["static_fit"]["source"], statics[i]);
+    const auto& n = sj[i]["inflation"]["N"];
+    ASSERT_TRUE(n["ratio"].is_number()) << n.dump();
+    EXPECT_NEAR(n["ratio"].get<double>(), 1.0, 0.05);
+    EXPECT_LT(n["ci_low"].get<double>(), n["ci_high"].get<double>());
+  }
+  with_static.pop_back();
+  const auto few = run_cli(with_static);
+  EXPECT_EQ(few.exit_code, 1);
+  EXPECT_NE(few.err.find("--static: 5 recordings for the 6 sensors"), std::string::npos) << few.err;
+
   auto table_args = in_motion_args("dodeca", files);
   table_args.insert(table_args.end(), {"--format", "table"});
   const auto t = run_cli(table_args);

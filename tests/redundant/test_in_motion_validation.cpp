@@ -18,6 +18,7 @@
 
 #include "imunoise/error.hpp"
 #include "imunoise/fit/fit.hpp"
+#include "imunoise/phase.hpp"
 #include "imunoise/redundant/in_motion.hpp"
 #include "imunoise/study/in_motion.hpp"
 #include "redundant/redundant_test_support.hpp"
@@ -319,6 +320,74 @@ TEST(RedundantInMotionValidation, LeakageRemovalAtRestLeavesTheNoiseAlone) {
   }
   // No motion: nothing to calibrate against; the coefficients are noise over noise, whatever
   // their size, and the test is that the noise curves above did not move.
+}
+
+}  // namespace
+
+namespace {
+
+TEST(RedundantInMotionValidation, CoefficientRatioCombinesLogNormalIntervals) {
+  Coefficient a, b;
+  a.identified = b.identified = true;
+  a.value = 3.0;
+  a.ci_low = 3.0 / 1.2;
+  a.ci_high = 3.0 * 1.2;
+  b.value = 2.0;
+  b.ci_low = 2.0 / 1.1;
+  b.ci_high = 2.0 * 1.1;
+  const auto r = study::coefficient_ratio(a, b, 0.95);
+  ASSERT_TRUE(r.available);
+  EXPECT_DOUBLE_EQ(r.ratio, 1.5);
+  const double s = std::hypot(std::log(1.2), std::log(1.1));  // the half-widths of ln add in quadrature
+  EXPECT_NEAR(r.ci_high / r.ratio, std::exp(s), 1e-12);
+  EXPECT_NEAR(r.ratio / r.ci_low, std::exp(s), 1e-12);
+  b.identified = false;
+  EXPECT_FALSE(study::coefficient_ratio(a, b, 0.95).available);
+  b.identified = true;
+  b.ci_low = 0.0;
+  EXPECT_FALSE(study::coefficient_ratio(a, b, 0.95).available);
+}
+
+TEST(RedundantInMotionValidation, InflationAgainstStaticRecordings) {
+  // The sensors are 1.5 times noisier (N) in motion than at rest; K the same.
+  const Geometry g = make_geometry("dodeca");
+  auto moving = varied_models(6);
+  auto still = moving;
+  for (auto& m : moving) m.n_unit_sqrt_s *= 1.5;
+  auto unit = study::analyze_in_motion(g, as_records(simulate_unit(g, moving, 100.0, kDuration_s, 404, tumbling), 100.0),
+                                       {}, fit::FitOptions{});
+  std::vector<Record> statics;
+  for (std::size_t i = 0; i < 6; ++i) {
+    Record r;
+    r.name = r.source = "static" + std::to_string(i + 1);
+    r.rate_hz = 100.0;
+    r.rate_unit = Unit{"rad/s", Quantity::angular_rate, 1.0};
+    r.unit_given = true;
+    auto x = sim::simulate(still[i], 100.0, static_cast<std::size_t>(kDuration_s * 100), 505, i);
+    for (auto& v : x) v *= kDeg;
+    r.n_samples = x.size();
+    r.phase_si = phase_from_rate(x, 0.01, compensated_mean(x));
+    statics.push_back(std::move(r));
+  }
+  auto fewer = statics;
+  fewer.pop_back();
+  EXPECT_THROW(study::compare_with_static(unit, fewer, {}), InputError);
+  study::compare_with_static(unit, statics, fit::FitOptions{});
+  for (const auto& s : unit.sensors) {
+    ASSERT_EQ(s.inflation.size(), 3u);
+    const auto& n = s.inflation[0].second;
+    ASSERT_TRUE(n.available) << n.reason;
+    std::printf("%s: N in motion / at rest %.3f [%.3f, %.3f]\n", s.record.source.c_str(), n.ratio, n.ci_low, n.ci_high);
+    EXPECT_NEAR(n.ratio, 1.5, 0.075);
+    EXPECT_LT(n.ci_low, 1.5);
+    EXPECT_GT(n.ci_high, 1.5);
+    const auto& k = s.inflation[2].second;
+    ASSERT_TRUE(k.available) << k.reason;
+    EXPECT_NEAR(k.ratio, 1.0, 0.45);
+  }
+  const auto doc = study::in_motion_json(unit, fit::FitOptions{});
+  EXPECT_TRUE(doc["sensors"][0]["inflation"]["N"]["ratio"].is_number());
+  EXPECT_TRUE(doc["sensors"][0]["static_fit"]["terms"]["N"]["value"].is_number());
 }
 
 }  // namespace

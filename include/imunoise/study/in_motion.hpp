@@ -27,8 +27,21 @@
 
 namespace imunoise::study {
 
+/// In-motion over static value of one noise term, with an interval at the fit's level.
+struct Inflation {
+  bool available = false;
+  double ratio = 0.0;
+  double ci_low = 0.0;
+  double ci_high = 0.0;
+  std::string reason;  ///< why not available (a term not identified in one of the fits)
+};
+
 struct InMotionSensor {
   Record record;                        ///< the recording's description (its samples released)
+  std::optional<Record> static_record;  ///< the same sensor at rest (description only), if given
+  std::optional<fit::FitResult> static_fit;
+  /// N, B, K (fit::kN, kB, kK): in-motion / static, when a static recording is given.
+  std::vector<std::pair<int, Inflation>> inflation;
   bool identified = false;              ///< the geometry gives this sensor its own curve
   std::string reason;                   ///< why not (identifiability), or why the fit failed
   std::optional<fit::FitResult> fit;    ///< the in-motion noise model (SI)
@@ -60,11 +73,23 @@ std::size_t effective_phase_count(std::span<const DevPoint> curve, std::size_t n
 InMotionUnit analyze_in_motion(const redundant::Geometry& geometry, std::vector<Record> recordings,
                                const redundant::InMotionOptions& options, const fit::FitOptions& fit_options);
 
+/// The ratio a / b of two fitted coefficients with its interval: each coefficient's interval is
+/// taken as log-normal (sd of ln = ln(high / low) / (2 z), z the two-sided normal quantile at
+/// `level`), the two independent (different recordings), so ln(a / b) has the summed variance.
+/// Not available when either is not identified or its lower bound is not positive.
+Inflation coefficient_ratio(const Coefficient& in_motion, const Coefficient& at_rest, double level);
+
+/// Fits each sensor's static recording (the one Record fit, study::fit_channel) and sets its
+/// in-motion/static ratio per term. InputError when their number differs from the sensors'.
+void compare_with_static(InMotionUnit& unit, std::vector<Record> static_recordings,
+                         const fit::FitOptions& fit_options);
+
 /// The `in_motion` document: geometry, rate_hz, samples, unit, identifiability {sensors,
 /// parity_channels, equations, rank, per_sensor, reason, unobservable}, common {description,
 /// weights, points[{tau_s, adev, edf, ci_low, ci_high}]}, leakage {removed, coefficients (B),
 /// motion_rms, convention}, sensors[{source, identified, leakage {scale_factor_ppm,
-/// misalignment_mrad}, reason |
+/// misalignment_mrad}, static_fit, inflation {N, B, K: {ratio, ci_low, ci_high} | {reason}}
+/// (with static recordings), reason |
 /// curve {unit, ci_level, points[{m, tau_s, adev, n, edf, ci_low, ci_high}]}, fit (the
 /// `imunoise fit` document) | fit_error}], notes. Deviations in the recordings' unit.
 nlohmann::json in_motion_json(const InMotionUnit& unit, const fit::FitOptions& fit_options);
