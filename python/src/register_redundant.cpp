@@ -127,7 +127,7 @@ std::vector<std::vector<double>> records_si(const py::object& records, const Uni
 
 // The `in_motion` document of `imunoise redundant --in-motion` for arrays.
 py::object in_motion(const py::object& records, const std::string& geometry, double rate, const std::string& units,
-                     bool per_sensor, double ci, bool remove_leakage) {
+                     bool per_sensor, double ci, bool remove_leakage, const py::object& static_records) {
   const auto g = redundant::make_geometry(geometry);
   checked_rate_hz(rate);
   const Unit unit = resolve_unit(units, Unit{}, false);
@@ -148,10 +148,24 @@ py::object in_motion(const py::object& records, const std::string& geometry, dou
   options.ci_level = ci;
   options.remove_leakage = remove_leakage;
   const fit::FitOptions fit_options;
+  std::vector<Record> statics;
+  if (!static_records.is_none()) {
+    auto st = records_si(static_records, unit);
+    for (std::size_t i = 0; i < st.size(); ++i) {
+      Record r;
+      r.name = r.source = "static_records[" + std::to_string(i) + "]";
+      r.rate_hz = rate;
+      r.rate_unit = unit;
+      r.unit_given = !units.empty();
+      statics.push_back(load::finish_rates(std::move(r), std::move(st[i]), {}));
+    }
+  }
   nlohmann::json doc;
   {
     py::gil_scoped_release release;
-    doc = study::in_motion_json(study::analyze_in_motion(g, std::move(recs), options, fit_options), fit_options);
+    auto result = study::analyze_in_motion(g, std::move(recs), options, fit_options);
+    if (!static_records.is_none()) study::compare_with_static(result, std::move(statics), fit_options);
+    doc = study::in_motion_json(result, fit_options);
   }
   return to_python(doc);
 }
@@ -240,13 +254,15 @@ void register_redundant(py::module_& m) {
         "`imunoise redundant --format json` (gains, GDOP, parity, fused-axis N/B/K, detection design)");
   m.def("in_motion", &in_motion, py::arg("records"), py::arg("geometry"), py::arg("rate") = 1.0,
         py::arg("units") = "", py::arg("per_sensor") = false, py::arg("ci") = 0.683,
-        py::arg("remove_leakage") = true,
+        py::arg("remove_leakage") = true, py::arg("static_records") = py::none(),
         "Each sensor's noise while the unit moves (the N-cornered hat in parity space): synchronous "
         "records (sensors x samples, in `units`) through the geometry -> the `in_motion` dict of "
         "`imunoise redundant --in-motion` (identifiability, common level, leakage, sensors with curve, "
         "fit and leakage, or identified False and the reason). remove_leakage=False keeps the motion "
         "leaking through scale-factor and misalignment errors; per_sensor=True raises ValueError when "
-        "the geometry cannot give every sensor its own curve.");
+        "the geometry cannot give every sensor its own curve. static_records (the same sensors at rest, "
+        "same order, rate and units) adds each sensor's static_fit and the in-motion/static "
+        "inflation of N, B, K.");
   m.def("fuse", &fuse, py::arg("records"), py::arg("geometry"), py::arg("rate") = 1.0, py::arg("units") = "",
         py::arg("fits") = py::none(), py::arg("detect") = false, py::arg("window_s") = 1.0,
         py::arg("reference_s") = 60.0, py::arg("false_alarm_per_hour") = 0.01,

@@ -92,6 +92,18 @@ def test_in_motion_gives_each_sensor_its_noise_through_the_motion():
         assert s["fit"]["terms"]["N"]["value"] == pytest.approx(n, rel=0.05)
 
 
+def test_in_motion_against_static_records_gives_the_inflation():
+    n_deg = [1e-3 * (1 + 0.2 * i) for i in range(6)]
+    moving = _tumbling_unit("dodeca", [1.5 * n for n in n_deg])
+    still = [imunoise.simulate(rate=100.0, duration=600.0, N=n, seed=70 + i) for i, n in enumerate(n_deg)]
+    im = imunoise.in_motion(moving, "dodeca", rate=100.0, units="deg/s", static_records=still)
+    for s in im["sensors"]:
+        n = s["inflation"]["N"]
+        assert n["ratio"] == pytest.approx(1.5, rel=0.05)
+        assert n["ci_low"] < n["ratio"] < n["ci_high"]
+        assert s["static_fit"]["terms"]["N"]["value"] > 0
+
+
 def test_in_motion_tetrahedron_reports_only_the_mean_level():
     n_deg = [1e-3, 2e-3, 1.5e-3, 1.2e-3]
     im = imunoise.in_motion(_tumbling_unit("tetra", n_deg, duration=100.0), "tetra", rate=100.0, units="deg/s")
