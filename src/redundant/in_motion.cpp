@@ -295,29 +295,33 @@ Matrix allan_covariance(std::span<const std::span<const double>> phase, double t
                                  m, 2 * m + 1, len));
   }
   const std::size_t terms = len - 2 * m;
-  std::vector<std::vector<double>> d(k, std::vector<double>(terms));
-  for (std::size_t j = 0; j < k; ++j) {
-    const double* x = phase[j].data();
-    double* out = d[j].data();
-    for (std::size_t t = 0; t < terms; ++t) out[t] = x[t + 2 * m] - 2.0 * x[t + m] + x[t];
-  }
   const double tau = static_cast<double>(m) * tau0_s;
   const double scale = 1.0 / (2.0 * tau * tau * static_cast<double>(terms));
-  for (std::size_t j = 0; j < k; ++j) {
-    for (std::size_t l = j; l < k; ++l) {
-      // Blocked sums in long double, as oadev: the result is independent of the record's length scale.
-      long double total = 0.0L;
-      constexpr std::size_t kBlock = 4096;
-      for (std::size_t b = 0; b < terms; b += kBlock) {
-        const std::size_t e = std::min(terms, b + kBlock);
-        double s = 0.0;
-        const double* dj = d[j].data();
-        const double* dl = d[l].data();
-        for (std::size_t t = b; t < e; ++t) s += dj[t] * dl[t];
-        total += s;
-      }
-      c(j, l) = c(l, j) = static_cast<double>(total) * scale;
+  // Blocks of second differences of every channel (cache-sized, no copy of the record), their
+  // pair products summed per block in double and across blocks in long double, as oadev.
+  constexpr std::size_t kBlock = 2048;
+  std::vector<double> d(k * kBlock);
+  std::vector<long double> total(k * k, 0.0L);
+  for (std::size_t b = 0; b < terms; b += kBlock) {
+    const std::size_t e = std::min(terms, b + kBlock);
+    const std::size_t w = e - b;
+    for (std::size_t j = 0; j < k; ++j) {
+      const double* x = phase[j].data();
+      double* out = d.data() + j * kBlock;
+      for (std::size_t t = 0; t < w; ++t) out[t] = x[b + t + 2 * m] - 2.0 * x[b + t + m] + x[b + t];
     }
+    for (std::size_t j = 0; j < k; ++j) {
+      const double* dj = d.data() + j * kBlock;
+      for (std::size_t l = j; l < k; ++l) {
+        const double* dl = d.data() + l * kBlock;
+        double sum = 0.0;
+        for (std::size_t t = 0; t < w; ++t) sum += dj[t] * dl[t];
+        total[j * k + l] += sum;
+      }
+    }
+  }
+  for (std::size_t j = 0; j < k; ++j) {
+    for (std::size_t l = j; l < k; ++l) c(j, l) = c(l, j) = static_cast<double>(total[j * k + l]) * scale;
   }
   return c;
 }
