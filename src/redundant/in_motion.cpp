@@ -424,8 +424,11 @@ InMotionResult in_motion_noise(const Matrix& measurement, std::span<const std::s
     for (std::size_t j = 1; j < k; ++j) {
       if (pt.allan_covariance(j, j) > pt.allan_covariance(loudest, loudest)) loudest = j;
     }
+    // Only the lag-1 autocorrelation (30 or more decimated points) is trusted: the B1 ratio of the
+    // last octaves, from a handful of averages, can call white rate noise "white PM" and give
+    // those taus a far too large EDF. Beyond, the previous tau's type (Stable32's rule).
     const NoiseId id = try_identify_noise(phase[loudest], m, Estimator::oadev);
-    if (id.identified() && alpha_in_domain(Estimator::oadev, id.alpha)) {
+    if (id.identified() && id.method == NoiseIdMethod::lag1_acf && alpha_in_domain(Estimator::oadev, id.alpha)) {
       alpha = id.alpha;
       have_alpha = true;
     } else {
@@ -479,7 +482,8 @@ InMotionResult in_motion_noise(const Matrix& measurement, std::span<const std::s
     r.notes.push_back(r.identifiability.reason);
   }
   if (unidentified > 0) {
-    r.notes.push_back(fmt::format("noise type not identified at {} of {} taus: {} used for their EDF",
+    r.notes.push_back(fmt::format("noise type not identified by the lag-1 autocorrelation at {} of {} taus: {} "
+                                  "used for their EDF",
                                   unidentified, factors.size(),
                                   have_alpha ? "the previous tau's type" : "white rate noise (alpha 0)"));
   }

@@ -6,9 +6,9 @@
 // white and random-walk terms cross at tau = sqrt(3) N / K ~ 2 s, so N is fitted over 0.01-1 s
 // (in-motion EDF in the thousands: N to ~1 %) and K over 4-1000 s, where the in-motion EDF of
 // each a_i falls from ~100 to a few (it also carries the other sensors' noise). Measured over
-// seeds (15 sensors a seed, both geometries): N outside 5 % or K outside 30 % for 4 of 120
-// sensor fits at 2000 s, 3 of 480 at 4000 s, 0 of 300 at 8000 s; 4000 s keeps the test near a
-// second. The failures are the fit's model selection trading K for B at the noisiest long taus.
+// seeds 1-20 (15 sensors a seed, both geometries): N outside 5 % or K outside 30 % for 7 of 300
+// sensor fits at 2000 s, 3 of 300 at 4000 s, 2 of 300 at 8000 s; 4000 s keeps the test near a
+// second. Most misses are the fit's model selection dropping a term at the noisiest long taus.
 #include <cmath>
 #include <cstdio>
 #include <numbers>
