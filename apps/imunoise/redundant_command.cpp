@@ -17,6 +17,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "imunoise/confidence/interval.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/redundant/analysis.hpp"
 #include "imunoise/redundant/fused_csv.hpp"
@@ -70,6 +71,7 @@ void run_in_motion(const RedundantOptionsCli& o, const redundant::Geometry& geom
   if (!o.fuse.empty() || o.detect || !o.output.empty()) {
     throw InputError("--in-motion cannot be combined with --fuse, --detect or -o: run them separately");
   }
+  validate_confidence_level(o.ci_level, "--ci");
   std::vector<Record> recs;
   for (const auto& f : o.in_motion) recs.push_back(read_recording(o, f, fits_unit));
   if (o.load.units.empty() && fits_unit == nullptr) {

@@ -168,6 +168,12 @@ TEST(CliRedundantInMotion, BadInputExitsOneWithTheCause) {
   r = run_cli(no_units);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("--units"), std::string::npos) << r.err;
+  // A confidence level given as a percentage.
+  auto percent = in_motion_args("dodeca", files);
+  percent.insert(percent.end(), {"--ci", "95"});
+  r = run_cli(percent);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("--ci 95"), std::string::npos) << r.err;
   // Not with --fuse.
   auto both = in_motion_args("dodeca", files);
   both.emplace_back("--fuse");
