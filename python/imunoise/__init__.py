@@ -15,15 +15,16 @@ Stable32 conventions. ``imunoise.nav(...)`` gives the navigation error growth (d
 ``imunoise.redundant(geometry, fits)`` analyses a redundant gyro unit and
 ``imunoise.fuse(records, geometry, rate=..., units=...)`` fuses its records and
 ``imunoise.in_motion(records, geometry, rate=..., units=...)`` gives each sensor's noise while the
-unit moves (docs/redundant.md).
+unit moves, ``imunoise.simulate_unit(geometry, rate, duration, ...)`` simulates one under motion
+(docs/redundant.md).
 ``imunoise.analyze(channels, rate, units=...)`` runs the whole study and returns the document of
 `imunoise analyze`'s report.json (docs/study.md).
 """
 from ._imunoise import InputError, deviation, fit, simulate, simulate_preset
 from ._imunoise import nav
-from ._imunoise import fuse, in_motion, redundant
+from ._imunoise import fuse, in_motion, redundant, simulate_unit
 
-__all__ = ["InputError", "deviation", "fit", "simulate", "simulate_preset", "redundant", "fuse", "in_motion", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev",
+__all__ = ["InputError", "deviation", "fit", "simulate", "simulate_preset", "redundant", "fuse", "in_motion", "simulate_unit", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev",
            "totdev", "mtotdev", "ttotdev", "htotdev", "theo1", "theobr", "mtie",
            "tierms"]
 __all__ += ["nav"]  # navigation error growth (register_nav.cpp)

@@ -4,7 +4,9 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -18,6 +20,7 @@
 #include "imunoise/redundant/geometry.hpp"
 #include "imunoise/redundant/in_motion.hpp"
 #include "imunoise/redundant/report.hpp"
+#include "imunoise/redundant/unit_simulation.hpp"
 #include "imunoise/load/load.hpp"
 #include "imunoise/study/in_motion.hpp"
 #include "imunoise/study/sensor.hpp"
@@ -170,6 +173,67 @@ py::object in_motion(const py::object& records, const std::string& geometry, dou
   return to_python(doc);
 }
 
+// One value per sensor from a scalar or a sequence of n.
+std::vector<double> per_sensor_values(const py::object& v, std::size_t n, const char* name) {
+  if (py::isinstance<py::float_>(v) || py::isinstance<py::int_>(v)) return std::vector<double>(n, v.cast<double>());
+  auto out = v.cast<std::vector<double>>();
+  if (out.size() != n) {
+    throw InputError(std::string(name) + ": " + std::to_string(out.size()) + " values for " + std::to_string(n) +
+                     " sensors; give one per sensor or a single value");
+  }
+  return out;
+}
+
+// A unit under motion in `units` (the noise terms in units of the rate, as imunoise.simulate).
+py::array_t<double> simulate_unit(const std::string& geometry, double rate, double duration, const std::string& units,
+                                  const py::object& n, const py::object& b, const py::object& k,
+                                  const py::object& scale_factor_ppm, const py::object& misalignment_mrad,
+                                  const py::object& motion_noise, double tumble, const std::vector<double>& turn,
+                                  std::uint64_t seed) {
+  const auto g = redundant::make_geometry(geometry);
+  checked_rate_hz(rate);
+  const Unit unit = resolve_unit(units, Unit{}, false);
+  const std::size_t count = g.size();
+  const auto nv = per_sensor_values(n, count, "N");
+  const auto bv = per_sensor_values(b, count, "B");
+  const auto kv = per_sensor_values(k, count, "K");
+  const auto sf = per_sensor_values(scale_factor_ppm, count, "scale_factor_ppm");
+  const auto mn = per_sensor_values(motion_noise, count, "motion_noise");
+  std::vector<std::vector<double>> mis(count, std::vector<double>(3, 0.0));
+  if (!misalignment_mrad.is_none()) {
+    mis = misalignment_mrad.cast<std::vector<std::vector<double>>>();
+    if (mis.size() != count || std::any_of(mis.begin(), mis.end(), [](const auto& r) { return r.size() != 3; })) {
+      throw InputError("misalignment_mrad: give one [x, y, z] (mrad) per sensor");
+    }
+  }
+  if (turn.size() != 3) throw InputError("turn: give [x, y, z] in the rate unit");
+  std::vector<redundant::UnitSensor> sensors(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    sensors[i].noise.n_unit_sqrt_s = nv[i] * unit.to_si;
+    sensors[i].noise.b_unit = bv[i] * unit.to_si;
+    sensors[i].noise.k_unit_per_sqrt_s = kv[i] * unit.to_si;
+    sensors[i].scale_factor_ppm = sf[i];
+    for (std::size_t a = 0; a < 3; ++a) sensors[i].misalignment_rad[a] = 1e-3 * mis[i][a];
+    sensors[i].motion_noise_sqrt_s = mn[i];
+  }
+  auto motion = redundant::tumble_profile(tumble * unit.to_si);
+  for (std::size_t a = 0; a < 3; ++a) motion.constant_rad_s[a] = turn[a] * unit.to_si;
+  std::vector<std::vector<double>> rec;
+  {
+    py::gil_scoped_release release;
+    rec = redundant::simulate_unit(g, sensors, motion, rate, duration, seed);
+  }
+  const std::size_t len = rec.empty() ? 0 : rec[0].size();
+  py::array_t<double> out({static_cast<py::ssize_t>(count), static_cast<py::ssize_t>(len)});
+  auto view = out.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < count; ++i) {
+    for (std::size_t t = 0; t < len; ++t) {
+      view(static_cast<py::ssize_t>(i), static_cast<py::ssize_t>(t)) = rec[i][t] / unit.to_si;
+    }
+  }
+  return out;
+}
+
 py::dict fuse(const py::object& records, const std::string& geometry, double rate, const std::string& units,
               const py::object& fits, bool detect, double window_s, double reference_s,
               double false_alarm_per_hour, double detection_probability, unsigned threads) {
@@ -263,6 +327,16 @@ void register_redundant(py::module_& m) {
         "the geometry cannot give every sensor its own curve. static_records (the same sensors at rest, "
         "same order, rate and units) adds each sensor's static_fit and the in-motion/static "
         "inflation of N, B, K.");
+  m.def("simulate_unit", &simulate_unit, py::arg("geometry"), py::arg("rate"), py::arg("duration"),
+        py::arg("units") = "deg/s", py::arg("N") = 0.0, py::arg("B") = 0.0, py::arg("K") = 0.0,
+        py::arg("scale_factor_ppm") = 0.0, py::arg("misalignment_mrad") = py::none(),
+        py::arg("motion_noise") = 0.0, py::arg("tumble") = 0.0,
+        py::arg("turn") = std::vector<double>{0.0, 0.0, 0.0}, py::arg("seed") = 1,
+        "A redundant unit under motion -> records[sensors, samples] in `units`: each sensor's N, B, K "
+        "(scalars or one per sensor, in units of the rate as imunoise.simulate), scale factor (ppm), "
+        "misalignment ([x, y, z] mrad per sensor), motion_noise (sqrt(s): extra white noise of "
+        "density motion_noise |h . w|), under rotations to `tumble` on every axis (0.5, 0.31, 0.17 Hz) "
+        "plus a steady `turn` [x, y, z]; reproducible from `seed`.");
   m.def("fuse", &fuse, py::arg("records"), py::arg("geometry"), py::arg("rate") = 1.0, py::arg("units") = "",
         py::arg("fits") = py::none(), py::arg("detect") = false, py::arg("window_s") = 1.0,
         py::arg("reference_s") = 60.0, py::arg("false_alarm_per_hour") = 0.01,
