@@ -17,12 +17,15 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "imunoise/confidence/interval.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/redundant/analysis.hpp"
 #include "imunoise/redundant/fused_csv.hpp"
 #include "imunoise/redundant/fusion.hpp"
 #include "imunoise/redundant/geometry.hpp"
+#include "imunoise/redundant/in_motion.hpp"
 #include "imunoise/redundant/report.hpp"
+#include "imunoise/study/in_motion.hpp"
 #include "imunoise/study/unit_fusion.hpp"
 #include "imunoise/units.hpp"
 #include "imunoise/load/load.hpp"
@@ -36,6 +39,11 @@ struct RedundantOptionsCli {
   std::string geometry;
   std::vector<std::string> from;
   std::vector<std::string> fuse;
+  std::vector<std::string> in_motion;   // --in-motion F1 ... Fn
+  std::vector<std::string> statics;     // --static S1 ... Sn: the same sensors at rest
+  bool per_sensor = false;              // --per-sensor: refuse a geometry without per-sensor curves
+  bool keep_leakage = false;            // --keep-leakage: no regression on the fused motion
+  double ci_level = 0.683;
   load::LoadOptions load;    // how each --fuse recording is read (file set per recording)
   std::string output;        // -o FUSED.csv
   std::string json_output;   // --json FILE
@@ -56,6 +64,48 @@ Record read_recording(const RedundantOptionsCli& o, const std::string& file, con
     options.units = fits_unit->name;
   }
   return load::load(options);
+}
+
+// --in-motion: each sensor's noise while the unit moves (redundant/in_motion.hpp).
+void run_in_motion(const RedundantOptionsCli& o, const redundant::Geometry& geometry, const Unit* fits_unit) {
+  if (!o.fuse.empty() || o.detect || !o.output.empty()) {
+    throw InputError("--in-motion cannot be combined with --fuse, --detect or -o: run them separately");
+  }
+  validate_confidence_level(o.ci_level, "--ci");
+  std::vector<Record> recs;
+  for (const auto& f : o.in_motion) recs.push_back(read_recording(o, f, fits_unit));
+  if (o.load.units.empty() && fits_unit == nullptr) {
+    for (const auto& r : recs) {
+      if (!r.unit_given || r.rate_unit.quantity != Quantity::angular_rate) {
+        throw InputError(r.source + ": --in-motion needs the unit of the recordings' values: pass "
+                         "--units deg/s (or rad/s, ...)");
+      }
+    }
+  }
+  redundant::InMotionOptions options;
+  options.require_per_sensor = o.per_sensor;
+  options.ci_level = o.ci_level;
+  options.remove_leakage = !o.keep_leakage;
+  const fit::FitOptions fit_options;
+  auto unit = study::analyze_in_motion(geometry, std::move(recs), options, fit_options);
+  if (!o.statics.empty()) {
+    std::vector<Record> statics;
+    for (const auto& f : o.statics) statics.push_back(read_recording(o, f, fits_unit));
+    study::compare_with_static(unit, std::move(statics), fit_options);
+  }
+  for (const auto& note : unit.notes) fmt::print(stderr, "imunoise: note: {}\n", note);
+  std::string text;
+  if (o.format == "json") {
+    nlohmann::json doc = redundant::report_json(redundant::analyze_unit(geometry), Unit{"rad/s", Quantity::angular_rate, 1.0}, nullptr);
+    doc["in_motion"] = study::in_motion_json(unit, fit_options);
+    text = doc.dump(1) + "\n";
+  } else {
+    text = study::in_motion_table(unit);
+  }
+  OutputOptions out;
+  out.path = o.json_output;
+  out.force = o.force;
+  write_output(out, text);
 }
 
 void run_redundant(RedundantOptionsCli& o) {
@@ -98,6 +148,13 @@ void run_redundant(RedundantOptionsCli& o) {
       }
     }
     unit = given;
+  }
+  if (!o.in_motion.empty()) {
+    run_in_motion(o, geometry, models.empty() ? nullptr : &unit);
+    return;
+  }
+  if (o.per_sensor || o.keep_leakage || !o.statics.empty()) {
+    throw InputError("--per-sensor, --keep-leakage and --static apply to --in-motion F1 ... Fn");
   }
   if (o.detect && o.fuse.empty()) throw InputError("--detect runs on recordings: add --fuse F1 ... Fn");
   if (!o.output.empty() && o.fuse.empty()) throw InputError("-o writes the fused recording: add --fuse F1 ... Fn");
@@ -156,6 +213,18 @@ void setup_redundant(CLI::App& app) {
       ->required();
   c->add_option("--from", o->from, "the sensors' fits (imunoise fit --format json), one per axis, in order");
   c->add_option("--fuse", o->fuse, "synchronous recordings, one per axis, in order (any format dev reads)");
+  c->add_option("--in-motion", o->in_motion,
+                 "synchronous recordings taken while the unit moves, one per axis, in order: each "
+                 "sensor's own noise from the parity space (the N-cornered hat) and its fit");
+  c->add_option("--static", o->statics,
+                 "with --in-motion: the same sensors' recordings at rest, in the same order: their fits and "
+                 "the in-motion/static ratio of N, B, K");
+  c->add_flag("--per-sensor", o->per_sensor,
+              "with --in-motion: fail (exit 1) when the geometry cannot give every sensor its own curve");
+  c->add_flag("--keep-leakage", o->keep_leakage,
+              "with --in-motion: do not remove the motion leaking into the parity (scale-factor and "
+              "misalignment errors, estimated by regression on the fused motion)");
+  c->add_option("--ci", o->ci_level, "with --in-motion: confidence level of the intervals (0-1)")->capture_default_str();
   add_load_options(*c, o->load);
   c->add_option("-o,--output", o->output, "write the fused recording (CSV t_s,x,y,z,p1..pk) to FILE");
   c->add_option("--json", o->json_output, "write the report to FILE instead of standard output");

@@ -13,15 +13,18 @@ R with 95 % intervals and verdicts) as a dict, the document of ``imunoise fit --
 conventions, helpers and return types; docs/allantools.md); the functions here keep imunoise's
 Stable32 conventions. ``imunoise.nav(...)`` gives the navigation error growth (docs/navigation.md).
 ``imunoise.redundant(geometry, fits)`` analyses a redundant gyro unit and
-``imunoise.fuse(records, geometry, rate=..., units=...)`` fuses its records (docs/redundant.md).
+``imunoise.fuse(records, geometry, rate=..., units=...)`` fuses its records and
+``imunoise.in_motion(records, geometry, rate=..., units=...)`` gives each sensor's noise while the
+unit moves, ``imunoise.simulate_unit(geometry, rate, duration, ...)`` simulates one under motion
+(docs/redundant.md).
 ``imunoise.analyze(channels, rate, units=...)`` runs the whole study and returns the document of
 `imunoise analyze`'s report.json (docs/study.md).
 """
 from ._imunoise import InputError, deviation, fit, simulate, simulate_preset
 from ._imunoise import nav
-from ._imunoise import fuse, redundant
+from ._imunoise import fuse, in_motion, redundant, simulate_unit
 
-__all__ = ["InputError", "deviation", "fit", "simulate", "simulate_preset", "redundant", "fuse", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev",
+__all__ = ["InputError", "deviation", "fit", "simulate", "simulate_preset", "redundant", "fuse", "in_motion", "simulate_unit", "adev", "oadev", "mdev", "tdev", "hdev", "ohdev",
            "totdev", "mtotdev", "ttotdev", "htotdev", "theo1", "theobr", "mtie",
            "tierms"]
 __all__ += ["nav"]  # navigation error growth (register_nav.cpp)

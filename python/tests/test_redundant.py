@@ -69,3 +69,94 @@ def test_fuse_without_units_keeps_the_numbers():
     out = imunoise.fuse(np.tile(h @ w, (5, 1)).T, "3+1")
     assert out["unit"] == "input unit"
     assert np.allclose(out["x"], 1.0) and np.allclose(out["z"], 3.0) and np.allclose(out["parity"][0], 0.0)
+
+
+def _tumbling_unit(geometry, n_deg, rate=100.0, duration=600.0):
+    """Records (deg/s) of a unit under a common 200 deg/s tumble, white noise N_i per sensor."""
+    h = np.array(imunoise.redundant(geometry)["H"])
+    t = (np.arange(int(rate * duration)) + 0.5) / rate
+    w = 200.0 * np.stack([np.sin(2 * np.pi * 0.5 * t), np.sin(2 * np.pi * 0.31 * t + 1), np.sin(2 * np.pi * 0.17 * t + 2)])
+    return [imunoise.simulate(rate=rate, duration=duration, N=n, seed=40 + i) + h[i] @ w for i, n in enumerate(n_deg)]
+
+
+def test_in_motion_gives_each_sensor_its_noise_through_the_motion():
+    n_deg = [1e-3 * (1 + 0.2 * i) for i in range(6)]
+    out = imunoise.in_motion(_tumbling_unit("dodeca", n_deg), "dodeca", rate=100.0, units="deg/s")
+    im = out
+    assert im["identifiability"]["per_sensor"] and im["identifiability"]["rank"] == 6
+    assert len(im["sensors"]) == 6
+    for s, n in zip(im["sensors"], n_deg):
+        assert s["identified"]
+        p0 = s["curve"]["points"][0]
+        assert p0["adev"] == pytest.approx(n / math.sqrt(0.01), rel=0.03)
+        assert s["fit"]["terms"]["N"]["value"] == pytest.approx(n, rel=0.05)
+
+
+def test_in_motion_against_static_records_gives_the_inflation():
+    n_deg = [1e-3 * (1 + 0.2 * i) for i in range(6)]
+    moving = _tumbling_unit("dodeca", [1.5 * n for n in n_deg])
+    still = [imunoise.simulate(rate=100.0, duration=600.0, N=n, seed=70 + i) for i, n in enumerate(n_deg)]
+    im = imunoise.in_motion(moving, "dodeca", rate=100.0, units="deg/s", static_records=still)
+    for s in im["sensors"]:
+        n = s["inflation"]["N"]
+        assert n["ratio"] == pytest.approx(1.5, rel=0.05)
+        assert n["ci_low"] < n["ratio"] < n["ci_high"]
+        assert s["static_fit"]["terms"]["N"]["value"] > 0
+
+
+def test_in_motion_tetrahedron_reports_only_the_mean_level():
+    n_deg = [1e-3, 2e-3, 1.5e-3, 1.2e-3]
+    im = imunoise.in_motion(_tumbling_unit("tetra", n_deg, duration=100.0), "tetra", rate=100.0, units="deg/s")
+    assert not im["identifiability"]["per_sensor"]
+    assert all(not s["identified"] and "fewer equations" in s["reason"] for s in im["sensors"])
+    # The one parity channel holds the mean of the four Allan variances: at tau0, mean N^2 / tau0.
+    level = im["common"]["points"][0]["adev"]
+    assert level == pytest.approx(math.sqrt(np.mean(np.square(n_deg)) / 0.01), rel=0.03)
+    with pytest.raises(ValueError, match="fewer equations than sensors"):
+        imunoise.in_motion(_tumbling_unit("tetra", n_deg, duration=10.0), "tetra", rate=100.0, units="deg/s",
+                           per_sensor=True)
+
+
+def test_in_motion_bad_input_raises_value_error():
+    recs = _tumbling_unit("dodeca", [1e-3] * 6, duration=10.0)
+    with pytest.raises(ValueError, match="5 recordings for the 6 sensors"):
+        imunoise.in_motion(recs[:5], "dodeca", rate=100.0, units="deg/s")
+    recs[2] = recs[2][:-1]
+    with pytest.raises(ValueError, match="synchronous"):
+        imunoise.in_motion(recs, "dodeca", rate=100.0, units="deg/s")
+
+
+def test_in_motion_removes_scale_factor_leakage():
+    n_deg = [1e-3] * 6
+    recs = _tumbling_unit("dodeca", n_deg, duration=120.0)
+    h = np.array(imunoise.redundant("dodeca")["H"])
+    t = (np.arange(12000) + 0.5) / 100.0
+    recs[0] = recs[0] + 1e-3 * (h[0] @ (200.0 * np.stack([np.sin(np.pi * t), np.sin(2 * np.pi * 0.31 * t + 1),
+                                                             np.sin(2 * np.pi * 0.17 * t + 2)])))
+    kept = imunoise.in_motion(recs, "dodeca", rate=100.0, units="deg/s", remove_leakage=False)
+    clean = imunoise.in_motion(recs, "dodeca", rate=100.0, units="deg/s")
+    assert not kept["leakage"]["removed"] and clean["leakage"]["removed"]
+    q = 7  # tau = 1.28 s
+    truth = 1e-3 / math.sqrt(1.28)
+    assert kept["sensors"][0]["curve"]["points"][q]["adev"] > 10 * truth
+    assert clean["sensors"][0]["curve"]["points"][q]["adev"] == pytest.approx(truth, rel=0.2)
+    # The dodecahedron's P_11 = 1/2: 1000 ppm on sensor 1 shows as 500 ppm relative to the unit's frame.
+    assert clean["sensors"][0]["leakage"]["scale_factor_ppm"] == pytest.approx(500, abs=10)
+
+
+def test_simulate_unit_feeds_in_motion_with_known_truth():
+    n_deg = [1e-3 * (1 + 0.2 * i) for i in range(6)]
+    recs = imunoise.simulate_unit("dodeca", rate=100.0, duration=600.0, units="deg/s", N=n_deg,
+                                  scale_factor_ppm=[1000, 0, 0, 0, 0, 0], tumble=200.0, seed=5)
+    assert recs.shape == (6, 60000)
+    kept = imunoise.in_motion(recs, "dodeca", rate=100.0, units="deg/s", remove_leakage=False)
+    clean = imunoise.in_motion(recs, "dodeca", rate=100.0, units="deg/s")
+    q = 7  # tau = 1.28 s
+    assert kept["sensors"][0]["curve"]["points"][q]["adev"] > 10 * n_deg[0] / math.sqrt(1.28)
+    # At 600 s the fitted N of 47 of 48 sensors (seeds 1-8) is within 5 %, all within 7 % (the
+    # 5 % claim is checked at 4000 s in tests/redundant).
+    for s, n in zip(clean["sensors"], n_deg):
+        assert s["fit"]["terms"]["N"]["value"] == pytest.approx(n, rel=0.08)
+    assert clean["sensors"][0]["leakage"]["scale_factor_ppm"] == pytest.approx(500, abs=10)
+    with pytest.raises(ValueError, match="5 values for 6 sensors"):
+        imunoise.simulate_unit("dodeca", rate=100.0, duration=1.0, N=[1e-3] * 5)

@@ -47,14 +47,15 @@ inline redundant::SensorModel truth_model(const sim::NoiseModel& m) {
 /// Sensor records (rad/s): m_i = h_i . w(t) + noise_i, with the body rate w(t) (rad/s) averaged
 /// over each sample as the simulator does (exact for a constant or linear-in-t rate; w is
 /// evaluated at mid-sample).
+/// One noise model per sensor (deg/s based, as the simulator's channels).
 inline std::vector<std::vector<double>> simulate_unit(
-    const redundant::Geometry& g, const sim::NoiseModel& model, double rate_hz, double duration_s,
+    const redundant::Geometry& g, const std::vector<sim::NoiseModel>& models, double rate_hz, double duration_s,
     std::uint64_t seed, const std::function<std::array<double, 3>(double)>& body_rate_rad_s) {
   sim::SimulationSpec spec;
   spec.rate_hz = rate_hz;
   spec.duration_s = duration_s;
   spec.seed = seed;
-  for (std::size_t i = 0; i < g.size(); ++i) spec.channels.push_back({model, {}, ""});
+  for (std::size_t i = 0; i < g.size(); ++i) spec.channels.push_back({models.at(i), {}, ""});
   sim::Generator gen(spec);
   const std::size_t n = gen.sample_count();
   std::vector<std::vector<double>> out(g.size(), std::vector<double>(n));
@@ -69,6 +70,13 @@ inline std::vector<std::vector<double>> simulate_unit(
     }
   }
   return out;
+}
+
+/// The same noise model on every sensor.
+inline std::vector<std::vector<double>> simulate_unit(
+    const redundant::Geometry& g, const sim::NoiseModel& model, double rate_hz, double duration_s,
+    std::uint64_t seed, const std::function<std::array<double, 3>(double)>& body_rate_rad_s) {
+  return simulate_unit(g, std::vector<sim::NoiseModel>(g.size(), model), rate_hz, duration_s, seed, body_rate_rad_s);
 }
 
 inline std::vector<std::span<const double>> spans_of(const std::vector<std::vector<double>>& v) {
