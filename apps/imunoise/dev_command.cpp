@@ -17,7 +17,7 @@
 #include "imunoise/tau_grid.hpp"
 #include "imunoise/theo.hpp"
 #include "imunoise/total.hpp"
-#include "imunoise/parallel/distributed_deviations.hpp"
+#include "imunoise/parallel/distributed_fit.hpp"
 #include "mpi_session.hpp"
 #include "imunoise/study/curves.hpp"
 #include "imunoise/study/fit_stage.hpp"
@@ -55,30 +55,6 @@ std::string render(const DevOptionsCli& options, const study::Record& record,
   return study::curves_table(record, curves, options.ci_level);
 }
 
-// --mpi: the record is read in slices by the ranks and the mergeable sums are merged in a tree
-// (imunoise/parallel/distributed_deviations.hpp); rank 0 prints. The noise type behind each
-// interval is identified on rank 0's own slice (the whole record never gathers in one place);
-// the EDF counts every sample.
-void run_dev_mpi(const DevOptionsCli& options, const std::vector<Estimator>& estimators,
-                 const TauGrid& grid, std::optional<int> forced_alpha) {
-  if (options.bias_correct) throw InputError("--bias-correct does not apply to --mpi's estimators");
-  const auto dist = parallel::distributed_deviations(mpi::start(), options.input, estimators, grid);
-  if (!dist.root) return;
-  const std::string note =
-      options.no_ci ? "--mpi: sums merged over the ranks; no confidence intervals (--no-ci)"
-                    : "--mpi: sums merged over the ranks; noise type identified on rank 0's slice (" +
-                          std::to_string(dist.root_phase_si.size()) + " of " +
-                          std::to_string(dist.n_phase) + " phase points), EDF over the whole record";
-  study::CurveOptions co;
-  co.estimators = estimators;
-  co.ci_level = options.ci_level;
-  co.no_ci = options.no_ci;
-  co.forced_alpha = forced_alpha;
-  co.threads = options.threads;
-  const auto curves = study::curves_from_points(dist.record, co, dist.curves, dist.root_phase_si, dist.n_phase, note);
-  write_output(options.output, render(options, dist.record, curves));
-}
-
 void run_dev(const DevOptionsCli& options) {
   if (options.format != "table" && options.format != "json" && options.format != "csv") {
     throw InputError("unknown --format '" + options.format + "'; use table, json or csv");
@@ -93,14 +69,6 @@ void run_dev(const DevOptionsCli& options) {
   }
   const std::optional<int> forced_alpha =
       options.noise_type.empty() ? std::nullopt : std::optional<int>(parse_noise_type(options.noise_type));
-  const TheoBrRatios theobr_ratios = parse_theobr_ratios(options.theobr_ratios);
-  if (options.mpi) {
-    run_dev_mpi(options, estimators, grid, forced_alpha);
-    return;
-  }
-
-  const Record record = load::load(options.input);
-  print_load_notes(record);
   study::CurveOptions co;
   co.estimators = estimators;
   co.grid = grid;
@@ -110,8 +78,16 @@ void run_dev(const DevOptionsCli& options) {
   co.bias_correct = options.bias_correct;
   co.threads = options.threads;
   co.time_budget_s = options.time_budget_s;
-  co.theobr_ratios = theobr_ratios;
+  co.theobr_ratios = parse_theobr_ratios(options.theobr_ratios);
   co.theobr_ratios_name = options.theobr_ratios;
+  if (options.mpi) {  // each rank reads its slice; rank 0 prints (imunoise/parallel/distributed_fit.hpp)
+    if (const auto dist = parallel::curves_distributed(mpi::start(), options.input, co)) {
+      write_output(options.output, render(options, dist->first, dist->second));
+    }
+    return;
+  }
+  const Record record = load::load(options.input);
+  print_load_notes(record);
   const auto curves = study::compute_curves(record, co, [](const std::string& note) {
     fmt::print(stderr, "imunoise: warning: {}\n", note);
   });

@@ -74,14 +74,7 @@ void run_in_motion(const RedundantOptionsCli& o, const redundant::Geometry& geom
   validate_confidence_level(o.ci_level, "--ci");
   std::vector<Record> recs;
   for (const auto& f : o.in_motion) recs.push_back(read_recording(o, f, fits_unit));
-  if (o.load.units.empty() && fits_unit == nullptr) {
-    for (const auto& r : recs) {
-      if (!r.unit_given || r.rate_unit.quantity != Quantity::angular_rate) {
-        throw InputError(r.source + ": --in-motion needs the unit of the recordings' values: pass "
-                         "--units deg/s (or rad/s, ...)");
-      }
-    }
-  }
+  if (o.load.units.empty() && fits_unit == nullptr) study::require_angular_rates(recs, "--in-motion");
   redundant::InMotionOptions options;
   options.require_per_sensor = o.per_sensor;
   options.ci_level = o.ci_level;
@@ -118,37 +111,7 @@ void run_redundant(RedundantOptionsCli& o) {
     throw InputError(fmt::format("--scale must be finite and non-zero, got {}", o.load.scale));
   }
 
-  Unit unit{"rad/s", Quantity::angular_rate, 1.0};
-  std::vector<redundant::SensorModel> models;
-  if (!o.from.empty()) {
-    if (o.from.size() != n) {
-      throw InputError(fmt::format("--from: {} fit files for the {} sensors of geometry {}; give one "
-                                   "per sensing axis, in order", o.from.size(), n, geometry.name));
-    }
-    std::vector<std::filesystem::path> paths(o.from.begin(), o.from.end());
-    models = redundant::read_fit_files(paths, unit);
-  }
-  if (!o.load.units.empty()) {
-    const Unit given = parse_unit(o.load.units);
-    if (given.quantity != Quantity::angular_rate) {
-      throw InputError("--units " + o.load.units + " is not an angular rate; the recordings are gyro rates (e.g. deg/s)");
-    }
-    if (!models.empty() && given.name != unit.name && unit.name != "input unit") {
-      throw InputError(fmt::format("--units {} but the fits ({}) are in {}: the recordings and the "
-                                   "fits must be in the same unit", given.name, o.from[0], unit.name));
-    }
-    if (unit.name == "input unit" && !models.empty()) {
-      for (auto& m : models) {  // fits written without a unit: their numbers are in --units
-        for (auto* c : {&m.coefficients.quantization, &m.coefficients.random_walk, &m.coefficients.bias_instability,
-                        &m.coefficients.rate_random_walk, &m.coefficients.rate_ramp}) {
-          c->value *= given.to_si;
-          c->ci_low *= given.to_si;
-          c->ci_high *= given.to_si;
-        }
-      }
-    }
-    unit = given;
-  }
+  auto [models, unit] = redundant::models_in_unit(o.from, o.load.units, geometry);
   if (!o.in_motion.empty()) {
     run_in_motion(o, geometry, models.empty() ? nullptr : &unit);
     return;
@@ -171,13 +134,7 @@ void run_redundant(RedundantOptionsCli& o) {
     std::vector<Record> recs;
     for (const auto& f : o.fuse) recs.push_back(read_recording(o, f, models.empty() ? nullptr : &unit));
     if (o.load.units.empty() && models.empty()) {
-      // Containers state their unit (rad/s for sensor_msgs/Imu); other files need --units.
-      for (const auto& r : recs) {
-        if (!r.unit_given || r.rate_unit.quantity != Quantity::angular_rate) {
-          throw InputError(r.source + ": --fuse needs the unit of the recordings' values: pass "
-                           "--units deg/s (or rad/s, ...)");
-        }
-      }
+      study::require_angular_rates(recs, "--fuse");  // containers state theirs (rad/s for Imu)
       unit = recs.front().rate_unit;
     }
     redundant::FusionOptions fo;

@@ -9,6 +9,21 @@
 
 namespace imunoise::parallel {
 
+std::optional<std::pair<Record, std::vector<study::Curve>>> curves_distributed(Ranks& ranks,
+                                                                               const load::LoadOptions& input,
+                                                                               const study::CurveOptions& options) {
+  if (options.bias_correct) throw InputError("--bias-correct does not apply to --mpi's estimators");
+  auto dist = distributed_deviations(ranks, input, options.estimators, options.grid);
+  if (!dist.root) return std::nullopt;
+  const std::string note =
+      options.no_ci ? "--mpi: sums merged over the ranks; no confidence intervals (--no-ci)"
+                    : "--mpi: sums merged over the ranks; noise type identified on rank 0's slice (" +
+                          std::to_string(dist.root_phase_si.size()) + " of " + std::to_string(dist.n_phase) +
+                          " phase points), EDF over the whole record";
+  auto curves = study::curves_from_points(dist.record, options, dist.curves, dist.root_phase_si, dist.n_phase, note);
+  return std::make_pair(std::move(dist.record), std::move(curves));
+}
+
 std::optional<std::pair<Record, fit::FitResult>> fit_distributed(Ranks& ranks, const load::LoadOptions& input,
                                                                  const TauGrid& grid, const fit::FitOptions& options) {
   auto dist = distributed_deviations(ranks, input, {Estimator::oadev}, grid);

@@ -110,6 +110,39 @@ std::vector<SensorModel> read_fit_files(std::span<const std::filesystem::path> p
   return models;
 }
 
+ModelsInUnit models_in_unit(std::span<const std::string> fit_files, const std::string& units, const Geometry& geometry) {
+  ModelsInUnit out;
+  if (!fit_files.empty()) {
+    if (fit_files.size() != geometry.size()) {
+      throw InputError(fmt::format("--from: {} fit files for the {} sensors of geometry {}; give one "
+                                   "per sensing axis, in order", fit_files.size(), geometry.size(), geometry.name));
+    }
+    std::vector<std::filesystem::path> paths(fit_files.begin(), fit_files.end());
+    out.models = read_fit_files(paths, out.unit);
+  }
+  if (units.empty()) return out;
+  const Unit given = parse_unit(units);
+  if (given.quantity != Quantity::angular_rate) {
+    throw InputError("--units " + units + " is not an angular rate; the recordings are gyro rates (e.g. deg/s)");
+  }
+  if (!out.models.empty() && given.name != out.unit.name && out.unit.name != "input unit") {
+    throw InputError(fmt::format("--units {} but the fits ({}) are in {}: the recordings and the "
+                                 "fits must be in the same unit", given.name, fit_files[0], out.unit.name));
+  }
+  if (out.unit.name == "input unit") {
+    for (auto& m : out.models) {  // fits written without a unit: their numbers are in --units
+      for (auto* c : {&m.coefficients.quantization, &m.coefficients.random_walk, &m.coefficients.bias_instability,
+                      &m.coefficients.rate_random_walk, &m.coefficients.rate_ramp}) {
+        c->value *= given.to_si;
+        c->ci_low *= given.to_si;
+        c->ci_high *= given.to_si;
+      }
+    }
+  }
+  out.unit = given;
+  return out;
+}
+
 nlohmann::json faults_json(const DetectionResult& d) {
   nlohmann::json faults = nlohmann::json::array();
   for (const auto& f : d.faults) {

@@ -43,4 +43,13 @@ FusedUnit fuse_recordings(const redundant::Geometry& geometry, std::vector<Recor
   return out;
 }
 
+void require_angular_rates(std::span<const Record> records, const std::string& option) {
+  for (const auto& r : records) {
+    if (!r.unit_given || r.rate_unit.quantity != Quantity::angular_rate) {
+      throw InputError(r.source + ": " + option + " needs the unit of the recordings' values: pass "
+                       "--units deg/s (or rad/s, ...)");
+    }
+  }
+}
+
 }  // namespace imunoise::study

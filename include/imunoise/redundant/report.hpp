@@ -11,6 +11,7 @@
 
 #include "imunoise/redundant/analysis.hpp"
 #include "imunoise/redundant/detection.hpp"
+#include "imunoise/redundant/geometry.hpp"
 #include "imunoise/units.hpp"
 
 namespace imunoise::redundant {
@@ -25,6 +26,16 @@ SensorModel sensor_model_from_fit_json(const nlohmann::json& document, const std
 /// Reads fit documents (JSON files written by `imunoise fit --format json`), one per sensor.
 /// Their units must agree (InputError naming the two files otherwise); `unit` receives it.
 std::vector<SensorModel> read_fit_files(std::span<const std::filesystem::path> paths, Unit& unit);
+
+/// The sensors' noise models and the unit of the unit's rates: from `fit_files` (one per sensor
+/// of `geometry`, or none) and `units` (the --units text, may be empty). Fits written without a
+/// unit are taken in `units`; fits in one unit and `units` another is an InputError, as is a
+/// unit that is not an angular rate or a file count that does not match the geometry.
+struct ModelsInUnit {
+  std::vector<SensorModel> models;
+  Unit unit{"rad/s", Quantity::angular_rate, 1.0};
+};
+ModelsInUnit models_in_unit(std::span<const std::string> fit_files, const std::string& units, const Geometry& geometry);
 
 /// The JSON document (interface.md, "redundant"; docs/redundant.md lists every field):
 /// geometry, n_sensors, H, axis_gain, gdop, parity, detectable, isolable, axis_gain_without,

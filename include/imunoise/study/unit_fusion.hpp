@@ -3,6 +3,7 @@
 // axes and parity residuals, with fault detection on request: the checks that make the
 // recordings one unit (one rate, one length), each sensor's noise model (given, or fitted from
 // its own recording by the one Record fit), the unit's analysis and the fusion.
+#include <span>
 #include <string>
 #include <vector>
 
@@ -24,5 +25,9 @@ struct FusedUnit {
 FusedUnit fuse_recordings(const redundant::Geometry& geometry, std::vector<Record> recordings,
                           std::vector<redundant::SensorModel> models, const redundant::AnalysisOptions& analysis,
                           const redundant::FusionOptions& fusion);
+
+/// InputError naming the first record whose values have no angular-rate unit (a text or
+/// binary file read without --units), and the fix; `option` names what needs them.
+void require_angular_rates(std::span<const Record> records, const std::string& option);
 
 }  // namespace imunoise::study
