@@ -239,30 +239,10 @@ py::dict fuse(const py::object& records, const std::string& geometry, double rat
               double false_alarm_per_hour, double detection_probability, unsigned threads) {
   const auto g = redundant::make_geometry(geometry);
   checked_rate_hz(rate);
-  // records: a 2-D array (sensors x samples) or a sequence of 1-D arrays.
-  std::vector<Array> arrays;
-  const Array as2d = py::isinstance<py::array>(records) ? Array::ensure(records) : Array();
-  if (as2d && as2d.ndim() == 2) {
-    for (py::ssize_t i = 0; i < as2d.shape(0); ++i) {
-      arrays.push_back(Array::ensure(records.attr("__getitem__")(i)));
-    }
-  } else {
-    for (const auto& r : records) arrays.push_back(Array::ensure(r));
-  }
   Unit fit_unit;
   auto models = models_of(fits, fit_unit);
   const Unit unit = resolve_unit(units, fit_unit, !models.empty());
-  std::vector<std::vector<double>> si;
-  for (std::size_t i = 0; i < arrays.size(); ++i) {
-    const auto& a = arrays[i];
-    if (!a || a.ndim() != 1) throw InputError("records[" + std::to_string(i) + "] must be a 1-D array");
-    std::vector<double> v(a.data(), a.data() + a.shape(0));
-    if (const std::size_t k = first_non_finite(v, 0); k < v.size()) {
-      throw InputError("records[" + std::to_string(i) + "]: sample " + std::to_string(k) + " is not finite");
-    }
-    for (auto& x : v) x *= unit.to_si;
-    si.push_back(std::move(v));
-  }
+  std::vector<std::vector<double>> si = records_si(records, unit);
   if (detect && models.empty()) {
     for (std::size_t i = 0; i < si.size(); ++i) {
       Record record;
