@@ -253,11 +253,13 @@ Eigen::MatrixXd aligned_p0(const NavOptions& o, const DiscreteModel& d) {
   if (!(o.align_s > 0.0)) return d.p0;
   const double r = o.earth.radius_m, w0 = w0_of(o);
   const Eigen::Index n = d.phi.rows();
-  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(4, n);
-  for (int i = 0; i < 4; ++i) h(i, i) = 1.0;
-  Eigen::Matrix4d noise = Eigen::Matrix4d::Zero();
-  const double pos = 0.01 / r, vel = 0.001 / (r * w0);  // 1 cm, 1 mm/s in the states' units
-  noise.diagonal() << pos * pos, pos * pos, vel * vel, vel * vel;
+  // Zero-velocity updates (w_N, w_E measured with 1 mm/s of noise): a well-conditioned 2 x 2
+  // innovation, solved by LDLT, not inverted.
+  Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2, n);
+  h(0, 2) = 1.0;
+  h(1, 3) = 1.0;
+  const double vel = 0.001 / (r * w0);
+  const Eigen::Matrix2d noise = Eigen::Matrix2d::Identity() * vel * vel;
   const Eigen::MatrixXd eye = Eigen::MatrixXd::Identity(n, n);
   Eigen::MatrixXd p = d.p0;
   // What the alignment starts from: a coarse attitude (1 deg of tilt, 5 deg of heading), which
@@ -269,12 +271,15 @@ Eigen::MatrixXd aligned_p0(const NavOptions& o, const DiscreteModel& d) {
   const long steps = std::max(1L, std::lround(o.align_s / o.dt_s));
   for (long k = 0; k < steps; ++k) {
     p = d.phi * p * d.phi.transpose() + d.qd;
-    const Eigen::Matrix4d s = h * p * h.transpose() + noise;
-    const Eigen::MatrixXd gain = p * h.transpose() * s.inverse();
+    const Eigen::Matrix2d s = h * p * h.transpose() + noise;
+    const Eigen::MatrixXd gain = s.ldlt().solve(h * p).transpose();  // P H' S^-1 (S, P symmetric)
     const Eigen::MatrixXd a = eye - gain * h;
     p = a * p * a.transpose() + gain * noise * gain.transpose();
     p = 0.5 * (p + p.transpose()).eval();
   }
+  // Navigation starts where the platform stood, at rest: position and velocity known.
+  p.topRows(4).setZero();
+  p.leftCols(4).setZero();
   return p;
 }
 

@@ -95,8 +95,9 @@ DiscreteModel discrete_model(const NavOptions& options, const std::array<GyroTer
                              const std::array<AccelTerms, 3>& accel);
 
 /// The covariance after a stationary alignment of options.align_s seconds: from d.p0,
-/// propagated step by step with zero-position and zero-velocity updates (th_N th_E w_N w_E
-/// measured with 1 cm and 1 mm/s noise; Joseph form). d.p0 itself when align_s is 0.
+/// propagated step by step with zero-velocity updates (w_N w_E measured with 1 mm/s of noise;
+/// Joseph form), then position and velocity set known (the start of navigation). d.p0 itself
+/// when align_s is 0.
 Eigen::MatrixXd aligned_p0(const NavOptions& options, const DiscreteModel& d);
 
 /// (phi_m, q_m) = m steps of x <- phi x + w, cov w = qd, by binary powers (log2 m products);
