@@ -59,7 +59,15 @@ TEST(CliAnalyze, WritesTheReportOfEveryColumn) {
 // every diagnostic, which the report holds in any case.
 TEST(CliAnalyze, OneLineAChannelAndEveryDiagnosticWithVerbose) {
   TempDir dir;
-  const auto file = dir.write("imu.csv", csv_record(20000, 100.0, 3));
+  // Values on a 0.01 deg/s grid: few distinct values, so the record checks have something to say.
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> normal(0.0, 0.01);
+  std::string text = "t,gx,gy\n";
+  for (int i = 0; i < 20000; ++i) {
+    text += std::to_string(i / 100.0) + "," + std::to_string(std::round(normal(rng) * 100.0) / 100.0) + "," +
+            std::to_string(std::round(normal(rng) * 100.0) / 100.0) + "\n";
+  }
+  const auto file = dir.write("imu.csv", text);
   const auto r = run_cli({"analyze", file, "--time-column", "t", "--units", "deg/s", "-o", dir.file("a"), "-q"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   for (const char* name : {"gx", "gy"}) {
@@ -72,6 +80,8 @@ TEST(CliAnalyze, OneLineAChannelAndEveryDiagnosticWithVerbose) {
   const auto v = run_cli({"analyze", file, "--time-column", "t", "--units", "deg/s", "-o", dir.file("b"), "-q",
                           "--verbose"});
   ASSERT_EQ(v.exit_code, 0) << v.err;
+  ASSERT_GT(diagnostics, 0u) << "the quantized record gave no diagnostic to print";
+  EXPECT_NE(r.err.find("diagnostic"), std::string::npos) << r.err;
   std::size_t printed = 0;
   for (std::size_t at = 0; (at = v.err.find("imunoise: warning:", at)) != std::string::npos; ++at) ++printed;
   EXPECT_EQ(printed, diagnostics) << v.err;
