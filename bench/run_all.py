@@ -376,8 +376,27 @@ def bench_vs_numpy(ctx):
     return result
 
 
+def bench_vs_allantools(ctx):
+    # AllanTools is no dependency: its rows run when ALLANTOOLS_SRC names a checkout.
+    cmd = [PYTHON, "bench/bench_vs_allantools.py", "--cli", ctx.cli] + (["--quick"] if ctx.quick else [])
+    out, result = run_script(cmd, ctx)
+    if out is None:
+        return result
+    benchmarks = []
+    for r in table_rows(out):
+        if r[0] == "case":
+            continue
+        case = re.sub(r"[^A-Za-z0-9]+", "_", r[0]).strip("_")
+        benchmarks.append(entry(f"{r[1]}/{case}", float(r[2])))
+        benchmarks.append(entry(f"imunoise_process/{case}", float(r[3]), f"{r[1]}/{case}", float(r[2])))
+    result["benchmarks"] = benchmarks
+    if not os.environ.get("ALLANTOOLS_SRC"):
+        result["note"] = "ALLANTOOLS_SRC not set: the AllanTools rows were skipped"
+    return result
+
+
 SCRIPTS = [("bench_large_file.sh", bench_large_file), ("bench_fleet.sh", bench_fleet),
-           ("bench_vs_numpy.py", bench_vs_numpy)]
+           ("bench_vs_numpy.py", bench_vs_numpy), ("bench_vs_allantools.py", bench_vs_allantools)]
 
 
 # ---------------------------------------------------------------------------------------------
