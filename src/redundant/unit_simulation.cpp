@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include "imunoise/error.hpp"
@@ -37,6 +38,35 @@ MotionProfile tumble_profile(double amplitude_rad_s) {
   return p;
 }
 
+std::array<std::vector<double>, 3> specific_force(const MotionProfile& motion, double rate_hz, double duration_s) {
+  if (!(rate_hz > 0.0) || !(duration_s > 0.0)) {
+    throw InputError(fmt::format("specific_force: rate {} Hz and duration {} s must be positive", rate_hz, duration_s));
+  }
+  const auto len = static_cast<std::size_t>(std::llround(duration_s * rate_hz));
+  const double tau0 = 1.0 / rate_hz;
+  std::array<std::vector<double>, 3> f;
+  for (auto& c : f) c.resize(len);
+  Eigen::Matrix3d r = Eigen::Matrix3d::Identity();  // body to world
+  const Eigen::Vector3d up(0.0, 0.0, motion.gravity_m_s2);
+  MotionProfile vibration;
+  vibration.lines = motion.vibration_m_s2;
+  for (std::size_t t = 0; t < len; ++t) {
+    const double t0 = static_cast<double>(t) * tau0;
+    // Half a sample's rotation to mid-sample, then the other half to the next sample's start.
+    const auto w = motion.mean_rate(t0, tau0);
+    const Eigen::Vector3d phi = Eigen::Vector3d(w[0], w[1], w[2]) * tau0;
+    const double angle = phi.norm();
+    const Eigen::Matrix3d half =
+        angle > 0 ? Eigen::AngleAxisd(0.5 * angle, phi / angle).toRotationMatrix() : Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d mid = r * half;
+    const Eigen::Vector3d fb = mid.transpose() * up;
+    const auto vib = vibration.mean_rate(t0 + 0.5 * tau0, 0.0);
+    for (std::size_t a = 0; a < 3; ++a) f[a][t] = fb(static_cast<Eigen::Index>(a)) + vib[a];
+    r = mid * half;
+  }
+  return f;
+}
+
 std::vector<std::vector<double>> simulate_unit(const Geometry& geometry, std::span<const UnitSensor> sensors,
                                                const MotionProfile& motion, double rate_hz, double duration_s,
                                                std::uint64_t seed) {
@@ -45,7 +75,9 @@ std::vector<std::vector<double>> simulate_unit(const Geometry& geometry, std::sp
     throw InputError(fmt::format("simulate_unit: {} sensor specifications for the {} axes of geometry {}",
                                  sensors.size(), n, geometry.name));
   }
-  for (const auto& line : motion.lines) {
+  std::vector<RotationLine> all_lines = motion.lines;
+  all_lines.insert(all_lines.end(), motion.vibration_m_s2.begin(), motion.vibration_m_s2.end());
+  for (const auto& line : all_lines) {
     if (!(line.frequency_hz >= 0.0) || line.frequency_hz > rate_hz / 2) {
       throw InputError(fmt::format("simulate_unit: a rotation line at {} Hz is outside 0 .. {} Hz (the Nyquist "
                                    "frequency of {} Hz)", line.frequency_hz, rate_hz / 2, rate_hz));
@@ -93,10 +125,27 @@ std::vector<std::vector<double>> simulate_unit(const Geometry& geometry, std::sp
     for (std::size_t a = 0; a < 3; ++a) eff[i][a] = s * (h[a] + d[a] - along * h[a]);
   }
   const double tau0 = 1.0 / rate_hz;
+  bool late = false;
+  bool g_sensitive = false;
+  for (const auto& s : sensors) {
+    late = late || s.time_offset_s != 0.0;
+    g_sensitive = g_sensitive || s.g_sensitivity_rad_s_per_m_s2 != std::array<double, 3>{};
+    if (!std::isfinite(s.time_offset_s) || std::abs(s.time_offset_s) > duration_s) {
+      throw InputError(fmt::format("simulate_unit: time offset {} s is not finite or longer than the record",
+                                   s.time_offset_s));
+    }
+  }
+  std::array<std::vector<double>, 3> force;
+  if (g_sensitive) force = specific_force(motion, rate_hz, duration_s);
   for (std::size_t t = 0; t < len; ++t) {
-    const auto w = motion.mean_rate(static_cast<double>(t) * tau0, tau0);
+    const auto w_common = motion.mean_rate(static_cast<double>(t) * tau0, tau0);
     for (std::size_t i = 0; i < n; ++i) {
+      const auto w = late ? motion.mean_rate(static_cast<double>(t) * tau0 + sensors[i].time_offset_s, tau0) : w_common;
       out[i][t] += eff[i][0] * w[0] + eff[i][1] * w[1] + eff[i][2] * w[2];
+      if (g_sensitive && t < force[0].size()) {
+        const auto& gi = sensors[i].g_sensitivity_rad_s_per_m_s2;
+        out[i][t] += gi[0] * force[0][t] + gi[1] * force[1][t] + gi[2] * force[2][t];
+      }
       if (motion_noise) {
         const auto& h = geometry.axes[i];
         const double sensed = std::abs(h[0] * w[0] + h[1] * w[1] + h[2] * w[2]);
