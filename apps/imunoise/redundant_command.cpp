@@ -27,6 +27,8 @@
 #include "imunoise/redundant/report.hpp"
 #include "imunoise/study/in_motion.hpp"
 #include "imunoise/study/in_motion_container.hpp"
+#include "imunoise/study/in_motion_report.hpp"
+#include "imunoise/study/write.hpp"
 #include "imunoise/study/unit_fusion.hpp"
 #include "imunoise/units.hpp"
 #include "imunoise/load/load.hpp"
@@ -48,6 +50,7 @@ struct RedundantOptionsCli {
   std::vector<std::string> accel;       // --accel AX AY AZ ...: accelerometer triads (g-sensitivity)
   std::vector<std::string> accel_topics;  // --accel-topic T: a container's accelerometer topic(s)
   std::string accel_units = "m/s^2";
+  std::string report;                   // --report DIR: the in-motion report (figures, tables)
   double ci_level = 0.683;
   load::LoadOptions load;    // how each --fuse recording is read (file set per recording)
   std::string output;        // -o FUSED.csv
@@ -90,6 +93,7 @@ void run_in_motion(const RedundantOptionsCli& o, const redundant::Geometry& geom
     throw InputError("--in-motion cannot be combined with --fuse, --detect or -o: run them separately");
   }
   validate_confidence_level(o.ci_level, "--ci");
+  if (!o.report.empty()) study::check_report_dir(o.report, o.force);  // before the work
   redundant::InMotionOptions options;
   options.require_per_sensor = o.per_sensor;
   options.ci_level = o.ci_level;
@@ -132,14 +136,16 @@ void run_in_motion(const RedundantOptionsCli& o, const redundant::Geometry& geom
     study::compare_with_static(unit, std::move(statics), fit_options);
   }
   for (const auto& note : unit.notes) fmt::print(stderr, "imunoise: note: {}\n", note);
-  std::string text;
-  if (o.format == "json") {
-    nlohmann::json doc = redundant::report_json(redundant::analyze_unit(geometry), Unit{"rad/s", Quantity::angular_rate, 1.0}, nullptr);
-    doc["in_motion"] = study::in_motion_json(unit, fit_options);
-    text = doc.dump(1) + "\n";
-  } else {
-    text = study::in_motion_table(unit);
+  nlohmann::json doc = redundant::report_json(redundant::analyze_unit(geometry), Unit{"rad/s", Quantity::angular_rate, 1.0}, nullptr);
+  doc["in_motion"] = study::in_motion_json(unit, fit_options);
+  if (!o.report.empty()) {
+    study::WriteOptions wo;
+    wo.force = o.force;
+    const auto written = study::write_in_motion_report(doc, o.report, wo);
+    for (const auto& note : written.notes) fmt::print(stderr, "imunoise: note: {}\n", note);
+    fmt::print(stderr, "imunoise: wrote the in-motion report to {} ({} files)\n", written.dir, written.files.size());
   }
+  const std::string text = o.format == "json" ? doc.dump(1) + "\n" : study::in_motion_table(unit);
   OutputOptions out;
   out.path = o.json_output;
   out.force = o.force;
@@ -162,9 +168,9 @@ void run_redundant(RedundantOptionsCli& o) {
     return;
   }
   if (o.per_sensor || o.keep_leakage || o.timing || !o.statics.empty() || !o.accel.empty() ||
-      !o.accel_topics.empty()) {
-    throw InputError("--per-sensor, --keep-leakage, --timing, --static, --accel and --accel-topic apply to "
-                     "--in-motion F1 ... Fn");
+      !o.accel_topics.empty() || !o.report.empty()) {
+    throw InputError("--per-sensor, --keep-leakage, --timing, --static, --accel, --accel-topic and --report apply "
+                     "to --in-motion F1 ... Fn");
   }
   if (o.detect && o.fuse.empty()) throw InputError("--detect runs on recordings: add --fuse F1 ... Fn");
   if (!o.output.empty() && o.fuse.empty()) throw InputError("-o writes the fused recording: add --fuse F1 ... Fn");
@@ -238,6 +244,9 @@ void setup_redundant(CLI::App& app) {
   c->add_option("--accel-topic", o->accel_topics,
                 "with --in-motion CONTAINER: accelerometer topic(s) (e.g. sensor_accel); a topic with both "
                 "(vehicle_imu, sensor_msgs/Imu) gives them itself");
+  c->add_option("--report", o->report,
+                "with --in-motion: write a report directory (report.html/.md/.json, each sensor's in-motion and "
+                "static curves on one figure)");
   c->add_option("--ci", o->ci_level, "with --in-motion: confidence level of the intervals (0-1)")->capture_default_str();
   add_load_options(*c, o->load);
   c->add_option("-o,--output", o->output, "write the fused recording (CSV t_s,x,y,z,p1..pk) to FILE");

@@ -1,12 +1,16 @@
 #include "imunoise/redundant/unit_simulation.hpp"
 
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <iterator>
 #include <numbers>
 
 #include <Eigen/Geometry>
 #include <fmt/format.h>
 
 #include "imunoise/error.hpp"
+#include "imunoise/io/atomic_output.hpp"
 #include "imunoise/sim/generator.hpp"
 
 namespace imunoise::redundant {
@@ -36,6 +40,106 @@ MotionProfile tumble_profile(double amplitude_rad_s) {
     p.lines.push_back(line);
   }
   return p;
+}
+
+namespace {
+
+double number_in(std::string_view text, std::string_view term) {
+  const std::string t(text);
+  char* end = nullptr;
+  const double v = std::strtod(t.c_str(), &end);
+  if (t.empty() || end != t.c_str() + t.size() || !std::isfinite(v)) {
+    throw InputError(fmt::format("--motion term '{}': '{}' is not a number", term, text));
+  }
+  return v;
+}
+
+constexpr const char* kMotionForms =
+    "write terms joined by '+': still, tumble[:DEG_S], turn:X,Y,Z (deg/s), vibration:DEG_S:HZ";
+
+}  // namespace
+
+MotionProfile motion_profile(std::string_view spec) {
+  constexpr double deg = std::numbers::pi / 180.0;
+  MotionProfile p;
+  if (spec.empty()) throw InputError(std::string("empty --motion; ") + kMotionForms);
+  std::size_t start = 0;
+  while (start <= spec.size()) {
+    const std::size_t plus = spec.find('+', start);
+    const std::string_view term = spec.substr(start, plus == std::string_view::npos ? spec.size() - start : plus - start);
+    const std::size_t colon = term.find(':');
+    const std::string_view name = term.substr(0, colon);
+    const std::string_view args = colon == std::string_view::npos ? std::string_view{} : term.substr(colon + 1);
+    if (name == "still" && args.empty()) {
+      // nothing
+    } else if (name == "tumble") {
+      const double a = args.empty() ? 200.0 : number_in(args, term);
+      const auto t = tumble_profile(a * deg);
+      p.lines.insert(p.lines.end(), t.lines.begin(), t.lines.end());
+    } else if (name == "turn" && !args.empty()) {
+      std::size_t b = 0;
+      for (std::size_t a = 0; a < 3; ++a) {
+        const std::size_t comma = args.find(',', b);
+        if ((a < 2) == (comma == std::string_view::npos)) {
+          throw InputError(fmt::format("--motion term '{}': write turn:X,Y,Z (three rates in deg/s)", term));
+        }
+        p.constant_rad_s[a] += number_in(args.substr(b, a < 2 ? comma - b : std::string_view::npos), term) * deg;
+        b = comma + 1;
+      }
+    } else if (name == "vibration" && !args.empty()) {
+      const std::size_t c2 = args.find(':');
+      if (c2 == std::string_view::npos) {
+        throw InputError(fmt::format("--motion term '{}': write vibration:DEG_S:HZ", term));
+      }
+      RotationLine line;
+      line.frequency_hz = number_in(args.substr(c2 + 1), term);
+      const double amp = number_in(args.substr(0, c2), term) * deg;
+      line.amplitude_rad_s = {amp, amp, amp};
+      line.phase_rad = {0.0, 1.0, 2.0};
+      p.lines.push_back(line);
+    } else {
+      throw InputError(fmt::format("--motion term '{}' is not known; {}", term, kMotionForms));
+    }
+    if (plus == std::string_view::npos) break;
+    start = plus + 1;
+  }
+  return p;
+}
+
+sim::NoiseModel scaled_noise(sim::NoiseModel m, double to_si) {
+  for (double* v : {&m.q_unit_s, &m.n_unit_sqrt_s, &m.b_unit, &m.k_unit_per_sqrt_s, &m.r_unit_per_s, &m.gm_sigma_unit,
+                    &m.sine_amplitude_unit, &m.bias_unit}) {
+    *v *= to_si;
+  }
+  return m;
+}
+
+std::vector<std::string> write_unit_records(const std::string& dir, bool force, const Geometry& geometry,
+                                            std::span<const std::vector<double>> records, const std::string& unit_name,
+                                            double to_si, const std::string& header) {
+  namespace fs = std::filesystem;
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (!fs::is_directory(dir, ec)) throw InputError(dir + ": cannot create the directory; check the path");
+  std::vector<std::string> paths;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    paths.push_back((fs::path(dir) / fmt::format("sensor{}.txt", i + 1)).string());
+    if (!force && fs::exists(paths.back(), ec)) {
+      throw InputError(paths.back() + ": file exists; imunoise does not overwrite it — choose another directory or "
+                       "pass --force");
+    }
+  }
+  std::string text;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    io::AtomicOutput out(paths[i], force);
+    const auto& h = geometry.axes[i];
+    text = header + fmt::format("# sensor {} of {} ({}), axis ({:.9g}, {:.9g}, {:.9g}), {}\n", i + 1, records.size(),
+                                geometry.name, h[0], h[1], h[2], unit_name);
+    for (const double v : records[i]) fmt::format_to(std::back_inserter(text), "{:.17g}\n", v / to_si);
+    out.write(text.data(), text.size());
+    out.commit();
+  }
+  return paths;
 }
 
 std::array<std::vector<double>, 3> specific_force(const MotionProfile& motion, double rate_hz, double duration_s) {

@@ -16,6 +16,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -63,6 +64,26 @@ struct UnitSensor {
 std::vector<std::vector<double>> simulate_unit(const Geometry& geometry, std::span<const UnitSensor> sensors,
                                                const MotionProfile& motion, double rate_hz, double duration_s,
                                                std::uint64_t seed);
+
+/// A motion profile from its text (the command line's --motion): terms joined by '+', each
+///   still                 no rotation;
+///   tumble[:DEG_S]        tumble_profile (default 200 deg/s);
+///   turn:X,Y,Z            a steady turn (deg/s);
+///   vibration:DEG_S:HZ    a vibration line of that amplitude on every axis (phases 0, 1, 2 rad).
+/// InputError naming the term and the forms accepted.
+MotionProfile motion_profile(std::string_view spec);
+
+/// The noise model with every value in the unit U (Q, N, B, K, R, bias, Gauss-Markov sigma,
+/// sinusoid amplitude) multiplied by `to_si`, for a model given in deg/s into rad/s.
+sim::NoiseModel scaled_noise(sim::NoiseModel model, double to_si);
+
+/// Writes sensor i's record (SI) to DIR/sensor<i>.txt (1-based), one value a line in the unit
+/// `unit_name` (value / to_si, 17 significant digits) after '#' lines of `header` and the
+/// sensor's axis; returns the paths. Each file is written atomically; InputError when one exists
+/// without `force` (before any is written) or DIR cannot be created.
+std::vector<std::string> write_unit_records(const std::string& dir, bool force, const Geometry& geometry,
+                                            std::span<const std::vector<double>> records, const std::string& unit_name,
+                                            double to_si, const std::string& header);
 
 /// The unit's specific force in body axes (m/s^2; x, y, z, one record each, round(duration_s
 /// rate_hz) samples): what a perfect accelerometer triad co-aligned with the body reads at
