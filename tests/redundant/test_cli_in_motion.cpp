@@ -2,6 +2,7 @@
 // written as text files (deg/s), read through the loader; JSON in_motion.sensors one entry per
 // file, the table, and the refusals (exit 1 naming the cause).
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <numbers>
 #include <string>
@@ -221,6 +222,7 @@ TEST(CliRedundantInMotion, ReportShowsEachSensorInMotionAndAtRestOnOneFigure) {
     // The two curves on the figure at their shortest tau: in motion 1.5 x the static level.
     const double moving = f["series"][0]["y"][0].get<double>();
     const double rest = f["series"][2]["y"][0].get<double>();
+    std::printf("report figure %zu: in motion / at rest at tau0 %.4f (truth 1.5)\n", i + 1, moving / rest);
     EXPECT_NEAR(moving / rest, 1.5, 0.1) << "sensor " << i + 1;
     EXPECT_GT(f["series"][2]["x"].size(), 5u);
   }
@@ -262,6 +264,8 @@ TEST(CliRedundantInMotion, SimulatedUnitFromTheCommandLineIsReadBack) {
     const auto& sensor = im["sensors"][i];
     EXPECT_NEAR(sensor["fit"]["terms"]["N"]["value"].get<double>(), 1e-3, 0.05e-3) << "sensor " << i + 1;
     const double sf = sensor["leakage"]["scale_factor_ppm"].get<double>();
+    std::printf("simulate --unit round trip, sensor %zu: N %.5g deg/sqrt(s) (truth 1e-3), scale factor %.2f ppm\n",
+                i + 1, sensor["fit"]["terms"]["N"]["value"].get<double>(), sf);
     EXPECT_NEAR(sf, i == 0 ? 500.0 : -100.0, 10.0) << "sensor " << i + 1;
   }
   // The same files again without --force, other output formats, a bad motion, a wrong count.
