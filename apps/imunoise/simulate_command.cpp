@@ -79,6 +79,11 @@ void run_simulate_unit(const SimulateOptionsCli& o) {
     throw InputError("--unit writes text files, one per sensor: drop --preset, --format and --channels");
   }
   if (o.rate_option->count() == 0) throw InputError("--unit needs --rate HZ");
+  if (o.range_option->count() > 0 || o.scale_factor != 1.0 || o.volts_per_unit != 0.0 || o.offset != 0.0 ||
+      o.lsb != 0.0) {
+    throw InputError("--unit simulates rates (with --sensor-scale-ppm per sensor): drop --range, --scale-factor, "
+                     "--volts-per-unit, --offset and --lsb");
+  }
   const auto geometry = redundant::make_geometry(o.unit_geometry);
   if (!o.sensor_scale_ppm.empty() && o.sensor_scale_ppm.size() != geometry.size()) {
     throw InputError(fmt::format("--sensor-scale-ppm: {} values for the {} sensors of {}", o.sensor_scale_ppm.size(),

@@ -192,6 +192,10 @@ std::array<std::vector<double>, 3> mean_specific_force(std::span<const Record> a
 
 ContainerUnit read_container_unit(const load::LoadOptions& options, std::span<const std::string> topics,
                                   std::span<const std::string> accel_topics) {
+  if (!options.column.empty() || !options.time_column.empty() || !options.binary.empty()) {
+    throw InputError(options.file + ": --column, --time-column and --binary do not apply to a container holding the "
+                     "whole unit: every gyro instance of --topic is read, with the file's timestamps");
+  }
   if (topics.empty()) {
     throw InputError(options.file + ": a container holding the whole unit needs --topic (e.g. sensor_gyro for a "
                      "PX4 log, or /imu0,/imu1,/imu2 for a bag)");
@@ -245,6 +249,10 @@ ContainerUnit read_container_unit(const load::LoadOptions& options, std::span<co
   unit.instance_offset_s = pairing.mean_offset_s;
   unit.instance_offset_spread_s = pairing.spread_s;
   const double rate_hz = 1.0 / io::analyze_timing(times[0], names[0]).median_dt_s;
+  if (options.rate_hz > 0 && std::abs(rate_hz / options.rate_hz - 1.0) > 0.01) {
+    throw InputError(fmt::format("{}: --rate {} Hz disagrees with the file's timestamps ({:.6g} Hz from the median "
+                                 "interval); drop --rate", options.file, options.rate_hz, rate_hz));
+  }
   const preprocess::PipelineOptions pipeline = load::pipeline_options(options);
   for (std::size_t i = 0; i < gyros.size(); ++i) {
     const auto& g = gyros[i];

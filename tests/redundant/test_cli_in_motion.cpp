@@ -287,6 +287,11 @@ TEST(CliRedundantInMotion, SimulatedUnitFromTheCommandLineIsReadBack) {
   again = run_cli(bad);
   EXPECT_EQ(again.exit_code, 1);
   EXPECT_NE(again.err.find("--unit writes text files"), std::string::npos) << again.err;
+  bad = sim;
+  bad.insert(bad.end(), {"--range", "100", "--force"});
+  again = run_cli(bad);
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.err.find("--unit simulates rates"), std::string::npos) << again.err;
 }
 
 }  // namespace

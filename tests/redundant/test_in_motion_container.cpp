@@ -343,6 +343,14 @@ TEST(RedundantInMotionContainer, CommandLineReadsTheUnitFromOnePX4Log) {
                               "sensor_accel"});
   EXPECT_EQ(accel.exit_code, 1);
   EXPECT_NE(accel.err.find("no gyro channels"), std::string::npos) << accel.err;
+  const auto column = run_cli({"redundant", "--geometry", "triads:3", "--in-motion", logged.path, "--topic",
+                               "sensor_gyro", "--column", "gyro0_x"});
+  EXPECT_EQ(column.exit_code, 1);
+  EXPECT_NE(column.err.find("do not apply to a container holding the whole unit"), std::string::npos) << column.err;
+  const auto rate_given = run_cli({"redundant", "--geometry", "triads:3", "--in-motion", logged.path, "--topic",
+                                   "sensor_gyro", "--rate", "100"});
+  EXPECT_EQ(rate_given.exit_code, 1);
+  EXPECT_NE(rate_given.err.find("--rate 100 Hz disagrees"), std::string::npos) << rate_given.err;
 }
 
 TEST(RedundantInMotionContainer, RealPX4LogIsReadAndItsUnsuitableInstancesRefusedWithTheReason) {
