@@ -114,7 +114,9 @@ void run_in_motion(const RedundantOptionsCli& o, const redundant::Geometry& geom
     notes = std::move(cu.notes);
     options.remove_timing_leakage = true;
   } else {
-    if (!o.accel_topics.empty()) throw InputError("--accel-topic applies to a container given as the one --in-motion file");
+    if (!o.accel_topics.empty()) {
+      throw InputError("--accel-topic applies to a container given as the one --in-motion file");
+    }
     for (const auto& f : o.in_motion) recs.push_back(read_recording(o, f, fits_unit));
     if (o.load.units.empty() && fits_unit == nullptr) study::require_angular_rates(recs, "--in-motion");
     std::vector<Record> accels;
@@ -136,7 +138,8 @@ void run_in_motion(const RedundantOptionsCli& o, const redundant::Geometry& geom
     study::compare_with_static(unit, std::move(statics), fit_options);
   }
   for (const auto& note : unit.notes) fmt::print(stderr, "imunoise: note: {}\n", note);
-  nlohmann::json doc = redundant::report_json(redundant::analyze_unit(geometry), Unit{"rad/s", Quantity::angular_rate, 1.0}, nullptr);
+  nlohmann::json doc =
+      redundant::report_json(redundant::analyze_unit(geometry), Unit{"rad/s", Quantity::angular_rate, 1.0}, nullptr);
   doc["in_motion"] = study::in_motion_json(unit, fit_options);
   if (!o.report.empty()) {
     study::WriteOptions wo;

@@ -62,8 +62,8 @@ std::string ratio_text(const json& sensor, const char* term) {
 std::string leakage_text(const json& sensor) {
   if (!sensor.contains("leakage")) return "not removed";
   const auto& l = sensor["leakage"];
-  std::string s = fmt::format("{:.4g} ppm, {:.4g} mrad", l["scale_factor_ppm"].is_number() ? l["scale_factor_ppm"].get<double>() : NAN,
-                              l["misalignment_mrad"].is_number() ? l["misalignment_mrad"].get<double>() : NAN);
+  const auto value = [](const json& v) { return v.is_number() ? v.get<double>() : NAN; };
+  std::string s = fmt::format("{:.4g} ppm, {:.4g} mrad", value(l["scale_factor_ppm"]), value(l["misalignment_mrad"]));
   if (l.contains("time_offset_ms") && l["time_offset_ms"].is_number()) {
     s += fmt::format(", {:.4g} ms", l["time_offset_ms"].get<double>());
   }
