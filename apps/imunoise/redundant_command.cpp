@@ -26,6 +26,9 @@
 #include "imunoise/redundant/in_motion.hpp"
 #include "imunoise/redundant/report.hpp"
 #include "imunoise/study/in_motion.hpp"
+#include "imunoise/study/in_motion_container.hpp"
+#include "imunoise/study/in_motion_report.hpp"
+#include "imunoise/study/write.hpp"
 #include "imunoise/study/unit_fusion.hpp"
 #include "imunoise/units.hpp"
 #include "imunoise/load/load.hpp"
@@ -43,6 +46,11 @@ struct RedundantOptionsCli {
   std::vector<std::string> statics;     // --static S1 ... Sn: the same sensors at rest
   bool per_sensor = false;              // --per-sensor: refuse a geometry without per-sensor curves
   bool keep_leakage = false;            // --keep-leakage: no regression on the fused motion
+  bool timing = false;                  // --timing: also the leakage of sensors sampled at different instants
+  std::vector<std::string> accel;       // --accel AX AY AZ ...: accelerometer triads (g-sensitivity)
+  std::vector<std::string> accel_topics;  // --accel-topic T: a container's accelerometer topic(s)
+  std::string accel_units = "m/s^2";
+  std::string report;                   // --report DIR: the in-motion report (figures, tables)
   double ci_level = 0.683;
   load::LoadOptions load;    // how each --fuse recording is read (file set per recording)
   std::string output;        // -o FUSED.csv
@@ -66,35 +74,81 @@ Record read_recording(const RedundantOptionsCli& o, const std::string& file, con
   return load::load(options);
 }
 
+std::vector<std::string> split_list(const std::string& text) {
+  std::vector<std::string> out;
+  std::size_t start = 0;
+  while (start <= text.size() && !text.empty()) {
+    const auto comma = text.find(',', start);
+    const auto piece = text.substr(start, comma == std::string::npos ? std::string::npos : comma - start);
+    if (!piece.empty()) out.push_back(piece);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return out;
+}
+
 // --in-motion: each sensor's noise while the unit moves (redundant/in_motion.hpp).
 void run_in_motion(const RedundantOptionsCli& o, const redundant::Geometry& geometry, const Unit* fits_unit) {
   if (!o.fuse.empty() || o.detect || !o.output.empty()) {
     throw InputError("--in-motion cannot be combined with --fuse, --detect or -o: run them separately");
   }
   validate_confidence_level(o.ci_level, "--ci");
-  std::vector<Record> recs;
-  for (const auto& f : o.in_motion) recs.push_back(read_recording(o, f, fits_unit));
-  if (o.load.units.empty() && fits_unit == nullptr) study::require_angular_rates(recs, "--in-motion");
+  if (!o.report.empty()) study::check_report_dir(o.report, o.force);  // before the work
   redundant::InMotionOptions options;
   options.require_per_sensor = o.per_sensor;
   options.ci_level = o.ci_level;
   options.remove_leakage = !o.keep_leakage;
+  options.remove_timing_leakage = o.timing;
+  std::vector<Record> recs;
+  std::array<std::vector<double>, 3> force;
+  std::vector<std::string> notes;
+  if (o.in_motion.size() == 1 && study::is_container_file(o.in_motion.front())) {
+    // The whole unit in one container (a PX4 log's instances, a bag's IMU topics): each instance on
+    // its own clock, so the timing leakage is removed too.
+    if (!o.accel.empty()) throw InputError("--accel is for separate files; a container's accelerometers: --accel-topic");
+    load::LoadOptions lo = o.load;
+    lo.file = o.in_motion.front();
+    auto cu = study::read_container_unit(lo, split_list(o.load.topic), o.accel_topics);
+    recs = std::move(cu.gyros);
+    force = std::move(cu.specific_force_m_s2);
+    notes = std::move(cu.notes);
+    options.remove_timing_leakage = true;
+  } else {
+    if (!o.accel_topics.empty()) {
+      throw InputError("--accel-topic applies to a container given as the one --in-motion file");
+    }
+    for (const auto& f : o.in_motion) recs.push_back(read_recording(o, f, fits_unit));
+    if (o.load.units.empty() && fits_unit == nullptr) study::require_angular_rates(recs, "--in-motion");
+    std::vector<Record> accels;
+    for (const auto& f : o.accel) {
+      load::LoadOptions lo = o.load;
+      lo.file = f;
+      lo.units = o.accel_units;
+      lo.keep_rates = true;
+      accels.push_back(load::load(lo));
+    }
+    force = study::mean_specific_force(accels, recs.empty() ? 0 : recs.front().rate_si.size());
+  }
   const fit::FitOptions fit_options;
-  auto unit = study::analyze_in_motion(geometry, std::move(recs), options, fit_options);
+  auto unit = study::analyze_in_motion(geometry, std::move(recs), options, fit_options, force);
+  unit.notes.insert(unit.notes.begin(), notes.begin(), notes.end());
   if (!o.statics.empty()) {
     std::vector<Record> statics;
     for (const auto& f : o.statics) statics.push_back(read_recording(o, f, fits_unit));
     study::compare_with_static(unit, std::move(statics), fit_options);
   }
   for (const auto& note : unit.notes) fmt::print(stderr, "imunoise: note: {}\n", note);
-  std::string text;
-  if (o.format == "json") {
-    nlohmann::json doc = redundant::report_json(redundant::analyze_unit(geometry), Unit{"rad/s", Quantity::angular_rate, 1.0}, nullptr);
-    doc["in_motion"] = study::in_motion_json(unit, fit_options);
-    text = doc.dump(1) + "\n";
-  } else {
-    text = study::in_motion_table(unit);
+  nlohmann::json doc =
+      redundant::report_json(redundant::analyze_unit(geometry), Unit{"rad/s", Quantity::angular_rate, 1.0}, nullptr);
+  doc["in_motion"] = study::in_motion_json(unit, fit_options);
+  if (!o.report.empty()) {
+    study::WriteOptions wo;
+    wo.force = o.force;
+    const auto written = study::write_in_motion_report(doc, o.report, wo);
+    for (const auto& note : written.notes) fmt::print(stderr, "imunoise: note: {}\n", note);
+    fmt::print(stderr, "imunoise: wrote the in-motion report to {} ({} files)\n", written.dir, written.files.size());
   }
+  const std::string text = o.format == "json" ? doc.dump(1) + "\n" : study::in_motion_table(unit);
   OutputOptions out;
   out.path = o.json_output;
   out.force = o.force;
@@ -116,8 +170,10 @@ void run_redundant(RedundantOptionsCli& o) {
     run_in_motion(o, geometry, models.empty() ? nullptr : &unit);
     return;
   }
-  if (o.per_sensor || o.keep_leakage || !o.statics.empty()) {
-    throw InputError("--per-sensor, --keep-leakage and --static apply to --in-motion F1 ... Fn");
+  if (o.per_sensor || o.keep_leakage || o.timing || !o.statics.empty() || !o.accel.empty() ||
+      !o.accel_topics.empty() || !o.report.empty()) {
+    throw InputError("--per-sensor, --keep-leakage, --timing, --static, --accel, --accel-topic and --report apply "
+                     "to --in-motion F1 ... Fn");
   }
   if (o.detect && o.fuse.empty()) throw InputError("--detect runs on recordings: add --fuse F1 ... Fn");
   if (!o.output.empty() && o.fuse.empty()) throw InputError("-o writes the fused recording: add --fuse F1 ... Fn");
@@ -181,6 +237,19 @@ void setup_redundant(CLI::App& app) {
   c->add_flag("--keep-leakage", o->keep_leakage,
               "with --in-motion: do not remove the motion leaking into the parity (scale-factor and "
               "misalignment errors, estimated by regression on the fused motion)");
+  c->add_flag("--timing", o->timing,
+              "with --in-motion: also remove the leakage of sensors sampled at different instants (regression "
+              "on the motion's derivative); always on for a container's instances");
+  c->add_option("--accel", o->accel,
+                "with --in-motion: accelerometer recordings, x y z of each co-aligned triad in body axes: the "
+                "gyros' g-sensitivity is estimated and removed (leakage.g_sensitivity)");
+  c->add_option("--accel-units", o->accel_units, "unit of the --accel recordings")->capture_default_str();
+  c->add_option("--accel-topic", o->accel_topics,
+                "with --in-motion CONTAINER: accelerometer topic(s) (e.g. sensor_accel); a topic with both "
+                "(vehicle_imu, sensor_msgs/Imu) gives them itself");
+  c->add_option("--report", o->report,
+                "with --in-motion: write a report directory (report.html/.md/.json, each sensor's in-motion and "
+                "static curves on one figure)");
   c->add_option("--ci", o->ci_level, "with --in-motion: confidence level of the intervals (0-1)")->capture_default_str();
   add_load_options(*c, o->load);
   c->add_option("-o,--output", o->output, "write the fused recording (CSV t_s,x,y,z,p1..pk) to FILE");

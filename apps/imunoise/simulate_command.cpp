@@ -13,6 +13,9 @@
 #include "commands.hpp"
 #include "imunoise/error.hpp"
 #include "imunoise/io/atomic_output.hpp"
+#include "imunoise/redundant/geometry.hpp"
+#include "imunoise/redundant/unit_simulation.hpp"
+#include "imunoise/units.hpp"
 #include "imunoise/sim/describe.hpp"
 #include "imunoise/sim/generator.hpp"
 #include "imunoise/sim/request.hpp"
@@ -37,6 +40,9 @@ struct SimulateOptionsCli {
   std::string path;
   bool force = false;
   unsigned threads = 0;
+  std::string unit_geometry;           // --unit G: a redundant unit, one file per sensor into -o DIR
+  std::string motion = "tumble";       // --motion SPEC (redundant::motion_profile)
+  std::vector<double> sensor_scale_ppm;  // --sensor-scale-ppm: one per sensor
   // Options given on the command line (to detect conflicts with --preset).
   std::vector<CLI::Option*> noise_options;
   CLI::Option* rate_option = nullptr;
@@ -65,7 +71,44 @@ sim::SimulationRequest to_request(const SimulateOptionsCli& o) {
   return r;
 }
 
+// --unit: a redundant unit under motion, each sensor its own stream of the same noise model
+// (redundant/unit_simulation.hpp does the work); one text file per sensor, read back by
+// `imunoise redundant --in-motion DIR/sensor*.txt --rate R --units U`.
+void run_simulate_unit(const SimulateOptionsCli& o) {
+  if (!o.preset.empty() || o.format != "text" || o.channels_option->count() > 0) {
+    throw InputError("--unit writes text files, one per sensor: drop --preset, --format and --channels");
+  }
+  if (o.rate_option->count() == 0) throw InputError("--unit needs --rate HZ");
+  if (o.range_option->count() > 0 || o.scale_factor != 1.0 || o.volts_per_unit != 0.0 || o.offset != 0.0 ||
+      o.lsb != 0.0) {
+    throw InputError("--unit simulates rates (with --sensor-scale-ppm per sensor): drop --range, --scale-factor, "
+                     "--volts-per-unit, --offset and --lsb");
+  }
+  const auto geometry = redundant::make_geometry(o.unit_geometry);
+  if (!o.sensor_scale_ppm.empty() && o.sensor_scale_ppm.size() != geometry.size()) {
+    throw InputError(fmt::format("--sensor-scale-ppm: {} values for the {} sensors of {}", o.sensor_scale_ppm.size(),
+                                 geometry.size(), geometry.name));
+  }
+  const Unit unit = parse_unit(o.units);
+  std::vector<redundant::UnitSensor> sensors(geometry.size());
+  for (std::size_t i = 0; i < sensors.size(); ++i) {
+    sensors[i].noise = redundant::scaled_noise(o.noise, unit.to_si);
+    if (!o.sensor_scale_ppm.empty()) sensors[i].scale_factor_ppm = o.sensor_scale_ppm[i];
+  }
+  const auto records = redundant::simulate_unit(geometry, sensors, redundant::motion_profile(o.motion), o.rate_hz,
+                                                o.duration_s, o.seed);
+  const std::string header = fmt::format("# imunoise simulate --unit {} --motion {} --rate {} --duration {} --seed {}\n",
+                                         geometry.name, o.motion, o.rate_hz, o.duration_s, o.seed);
+  const auto paths = redundant::write_unit_records(o.path, o.force, geometry, records, unit.name, unit.to_si, header);
+  fmt::print(stderr, "# wrote {} sensors x {} samples ({}) to {}/sensor1.txt .. sensor{}.txt\n", paths.size(),
+             records.empty() ? 0 : records[0].size(), unit.name, o.path, paths.size());
+}
+
 void run_simulate(const SimulateOptionsCli& o) {
+  if (!o.unit_geometry.empty()) {
+    run_simulate_unit(o);
+    return;
+  }
   if (o.format != "text" && o.format != "f64" && o.format != "f32") {
     throw InputError("--format " + o.format + " is not known; use text, f64 or f32");
   }
@@ -147,7 +190,17 @@ void setup_simulate(CLI::App& app) {
   cmd->add_option("--format", options->format,
                   "text (tab-separated, # header), f64 or f32 (raw little-endian, interleaved)")
       ->capture_default_str();
-  cmd->add_option("-o,--output", options->path, "output FILE, or - for standard output")->required();
+  cmd->add_option("-o,--output", options->path, "output FILE, or - for standard output (with --unit: a directory)")
+      ->required();
+  cmd->add_option("--unit", options->unit_geometry,
+                  "a redundant unit of this geometry (tetra, dodeca, triads:K, cone:N:DEG, FILE) under --motion: "
+                  "one text file per sensor in -o DIR, each sensor its own noise stream");
+  cmd->add_option("--motion", options->motion,
+                  "with --unit: still, tumble[:DEG_S], turn:X,Y,Z, vibration:DEG_S:HZ, joined by '+'")
+      ->capture_default_str();
+  cmd->add_option("--sensor-scale-ppm", options->sensor_scale_ppm,
+                  "with --unit: each sensor's scale-factor error (ppm), one per sensor")
+      ->delimiter(',');
   cmd->add_flag("--force", options->force, "replace an existing output file");
   cmd->add_option("--threads", options->threads,
                   "generate channels in parallel (0: all cores); the output does not depend on it");

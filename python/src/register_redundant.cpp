@@ -5,6 +5,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -23,6 +24,7 @@
 #include "imunoise/redundant/unit_simulation.hpp"
 #include "imunoise/load/load.hpp"
 #include "imunoise/study/in_motion.hpp"
+#include "imunoise/study/in_motion_container.hpp"
 #include "imunoise/study/sensor.hpp"
 #include "imunoise/units.hpp"
 #include "to_python.hpp"
@@ -129,24 +131,62 @@ std::vector<std::vector<double>> records_si(const py::object& records, const Uni
 }
 
 // The `in_motion` document of `imunoise redundant --in-motion` for arrays.
+// records: sensors x samples (arrays), or the path of a container holding the whole unit (a PX4
+// log, a bag: study::read_container_unit with `topic`, comma list, and `accel_topic`).
 py::object in_motion(const py::object& records, const std::string& geometry, double rate, const std::string& units,
-                     bool per_sensor, double ci, bool remove_leakage, const py::object& static_records) {
+                     bool per_sensor, double ci, bool remove_leakage, const py::object& static_records,
+                     const std::string& topic, const py::object& accel_topic, const py::object& specific_force,
+                     bool timing) {
   const auto g = redundant::make_geometry(geometry);
   checked_rate_hz(rate);
-  const Unit unit = resolve_unit(units, Unit{}, false);
-  auto si = records_si(records, unit);
+  Unit unit = resolve_unit(units, Unit{}, false);
   std::vector<Record> recs;
-  for (std::size_t i = 0; i < si.size(); ++i) {
-    Record r;
-    r.name = r.source = "records[" + std::to_string(i) + "]";
-    r.rate_hz = rate;
-    r.n_samples = si[i].size();
-    r.rate_unit = unit;
-    r.unit_given = !units.empty();
-    r.rate_si = std::move(si[i]);
-    recs.push_back(std::move(r));
-  }
+  std::array<std::vector<double>, 3> force;
+  std::vector<std::string> container_notes;
   redundant::InMotionOptions options;
+  if (py::isinstance<py::str>(records) || py::isinstance(records, py::module_::import("pathlib").attr("PurePath"))) {
+    if (!specific_force.is_none()) {
+      throw InputError("specific_force is for arrays; a container's accelerometers: accel_topic");
+    }
+    load::LoadOptions lo;
+    lo.file = py::str(records).cast<std::string>();
+    lo.units = units;
+    std::vector<std::string> topics;
+    for (std::size_t b = 0; b <= topic.size() && !topic.empty();) {
+      const auto c = topic.find(',', b);
+      const auto piece = topic.substr(b, c == std::string::npos ? std::string::npos : c - b);
+      if (!piece.empty()) topics.push_back(piece);
+      if (c == std::string::npos) break;
+      b = c + 1;
+    }
+    std::vector<std::string> accel_topics;
+    if (py::isinstance<py::str>(accel_topic)) accel_topics.push_back(accel_topic.cast<std::string>());
+    else if (!accel_topic.is_none()) accel_topics = accel_topic.cast<std::vector<std::string>>();
+    auto cu = study::read_container_unit(lo, topics, accel_topics);
+    recs = std::move(cu.gyros);
+    force = std::move(cu.specific_force_m_s2);
+    container_notes = std::move(cu.notes);
+    unit = recs.front().rate_unit;
+    options.remove_timing_leakage = true;
+  } else {
+    auto si = records_si(records, unit);
+    for (std::size_t i = 0; i < si.size(); ++i) {
+      Record r;
+      r.name = r.source = "records[" + std::to_string(i) + "]";
+      r.rate_hz = rate;
+      r.n_samples = si[i].size();
+      r.rate_unit = unit;
+      r.unit_given = !units.empty();
+      r.rate_si = std::move(si[i]);
+      recs.push_back(std::move(r));
+    }
+    if (!specific_force.is_none()) {
+      auto f = records_si(specific_force, Unit{"m/s^2", Quantity::acceleration, 1.0});
+      if (f.size() != 3) throw InputError("specific_force: give 3 arrays (x, y, z of the body, m/s^2)");
+      for (std::size_t a = 0; a < 3; ++a) force[a] = std::move(f[a]);
+    }
+    options.remove_timing_leakage = timing;
+  }
   options.require_per_sensor = per_sensor;
   options.ci_level = ci;
   options.remove_leakage = remove_leakage;
@@ -166,7 +206,8 @@ py::object in_motion(const py::object& records, const std::string& geometry, dou
   nlohmann::json doc;
   {
     py::gil_scoped_release release;
-    auto result = study::analyze_in_motion(g, std::move(recs), options, fit_options);
+    auto result = study::analyze_in_motion(g, std::move(recs), options, fit_options, force);
+    result.notes.insert(result.notes.begin(), container_notes.begin(), container_notes.end());
     if (!static_records.is_none()) study::compare_with_static(result, std::move(statics), fit_options);
     doc = study::in_motion_json(result, fit_options);
   }
@@ -298,7 +339,8 @@ void register_redundant(py::module_& m) {
         "`imunoise redundant --format json` (gains, GDOP, parity, fused-axis N/B/K, detection design)");
   m.def("in_motion", &in_motion, py::arg("records"), py::arg("geometry"), py::arg("rate") = 1.0,
         py::arg("units") = "", py::arg("per_sensor") = false, py::arg("ci") = 0.683,
-        py::arg("remove_leakage") = true, py::arg("static_records") = py::none(),
+        py::arg("remove_leakage") = true, py::arg("static_records") = py::none(), py::arg("topic") = "",
+        py::arg("accel_topic") = py::none(), py::arg("specific_force") = py::none(), py::arg("timing") = false,
         "Each sensor's noise while the unit moves (the N-cornered hat in parity space): synchronous "
         "records (sensors x samples, in `units`) through the geometry -> the `in_motion` dict of "
         "`imunoise redundant --in-motion` (identifiability, common level, leakage, sensors with curve, "
@@ -306,7 +348,11 @@ void register_redundant(py::module_& m) {
         "leaking through scale-factor and misalignment errors; per_sensor=True raises ValueError when "
         "the geometry cannot give every sensor its own curve. static_records (the same sensors at rest, "
         "same order, rate and units) adds each sensor's static_fit and the in-motion/static "
-        "inflation of N, B, K.");
+        "inflation of N, B, K. records may also be the path of a container holding the whole unit (a PX4 "
+        "log: topic='sensor_gyro', accel_topic='sensor_accel'; a bag: topic='/imu0,/imu1,/imu2'), its "
+        "instances paired sample by sample and the timing leakage removed (rate and units from the file). "
+        "specific_force (3 arrays, m/s^2, with arrays) estimates and removes the gyros' g-sensitivity; "
+        "timing=True the leakage of sensors sampled at different instants.");
   m.def("simulate_unit", &simulate_unit, py::arg("geometry"), py::arg("rate"), py::arg("duration"),
         py::arg("units") = "deg/s", py::arg("N") = 0.0, py::arg("B") = 0.0, py::arg("K") = 0.0,
         py::arg("scale_factor_ppm") = 0.0, py::arg("misalignment_mrad") = py::none(),

@@ -160,3 +160,39 @@ def test_simulate_unit_feeds_in_motion_with_known_truth():
     assert clean["sensors"][0]["leakage"]["scale_factor_ppm"] == pytest.approx(500, abs=10)
     with pytest.raises(ValueError, match="5 values for 6 sensors"):
         imunoise.simulate_unit("dodeca", rate=100.0, duration=1.0, N=[1e-3] * 5)
+
+
+def test_in_motion_reads_the_unit_from_one_px4_log(tmp_path):
+    # The io tests' ULog writer (the format specification; tests/io/writers/write_ulog.py): two
+    # sensor_gyro instances 1.234 ms apart, white 0.01 rad/s per sample. Two co-aligned triads
+    # identify no sensor; the mean level at tau0 is the per-sample deviation.
+    import os
+    import subprocess
+    import sys
+    writer = os.path.join(os.path.dirname(__file__), "..", "..", "tests", "io", "writers", "write_ulog.py")
+    log = str(tmp_path / "two_imus.ulg")
+    subprocess.run([sys.executable, writer, log, "3000"], check=True)
+    im = imunoise.in_motion(log, "triads:2", topic="sensor_gyro")
+    assert im["unit"] == "rad/s" and im["rate_hz"] == pytest.approx(200.0)
+    assert len(im["sensors"]) == 6 and not im["identifiability"]["per_sensor"]
+    assert im["leakage"]["timing"]
+    assert im["sensors"][3]["source"].endswith("[sensor_gyro gyro1_x]")
+    assert im["common"]["points"][0]["adev"] == pytest.approx(0.01, rel=0.06)
+    assert any("paired sample by sample" in n for n in im["notes"])
+    with pytest.raises(ValueError, match="6 recordings for the 9 sensors"):
+        imunoise.in_motion(log, "triads:3", topic="sensor_gyro")
+
+
+def test_in_motion_specific_force_estimates_g_sensitivity():
+    recs = _tumbling_unit("dodeca", [1e-3] * 6, duration=60.0)
+    n = len(recs[0])
+    rng = np.random.default_rng(3)
+    force = [rng.standard_normal(n) for _ in range(3)]
+    im = imunoise.in_motion(recs, "dodeca", rate=100.0, units="deg/s", specific_force=force)
+    assert im["leakage"]["g_sensitivity"]
+    g = im["sensors"][0]["leakage"]["g_sensitivity"]
+    assert g["unit"] == "deg/h/g" and len(g["value"]) == 3 and all(s > 0 for s in g["se"])
+    # None simulated: within 4 standard errors of 0.
+    assert all(abs(v) < 4 * s for v, s in zip(g["value"], g["se"]))
+    with pytest.raises(ValueError, match="3 arrays"):
+        imunoise.in_motion(recs, "dodeca", rate=100.0, units="deg/s", specific_force=force[:2])

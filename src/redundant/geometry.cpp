@@ -24,7 +24,8 @@ constexpr double kUnitTolerance = 1e-6;
 constexpr double kSpanTolerance = 1e-9;
 
 const char* kForms =
-    "use tetra, cone:N:DEG (e.g. cone:6:54.7356), 3+1, dodeca, or a YAML/CSV file of unit "
+    "use tetra, cone:N:DEG (e.g. cone:6:54.7356), 3+1, dodeca, triads:K (K co-aligned triads), or a "
+    "YAML/CSV file of unit "
     "vectors (x,y,z) or azimuth,elevation pairs in degrees";
 
 std::string trim(std::string_view s) {
@@ -237,6 +238,23 @@ Geometry make_geometry(std::string_view spec_in) {
         "dodeca", {{0, 1, phi}, {0, -1, phi}, {1, phi, 0}, {-1, phi, 0}, {phi, 0, 1}, {-phi, 0, 1}});
     g.notes.clear();  // the built-in vectors are normalised by design, not a user's slip
     return g;
+  }
+  if (key.rfind("triads:", 0) == 0) {
+    // K co-aligned orthogonal triads (a flight controller's IMUs): rows x, y, z of triad 1, then
+    // of triad 2, ..., the order of a PX4 log's instances gyro0_x .. gyroK_z.
+    const std::string k_text = key.substr(7);
+    std::size_t k = 0;
+    const auto [p, ec] = std::from_chars(k_text.data(), k_text.data() + k_text.size(), k);
+    if (ec != std::errc() || p != k_text.data() + k_text.size() || k == 0 || k > 64) {
+      throw InputError("--geometry '" + spec + "': write triads:K with K the number of co-aligned triads (1 to 64)");
+    }
+    std::vector<Axis> axes;
+    for (std::size_t t = 0; t < k; ++t) {
+      axes.push_back({1, 0, 0});
+      axes.push_back({0, 1, 0});
+      axes.push_back({0, 0, 1});
+    }
+    return geometry_from_axes("triads:" + std::to_string(k), std::move(axes));
   }
   if (key.rfind("cone:", 0) == 0) {
     const auto second = key.find(':', 5);

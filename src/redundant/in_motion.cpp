@@ -156,48 +156,92 @@ DevPoint deviation_point(std::size_t m, double tau_s, std::size_t n_terms, int a
   return p;
 }
 
-// Regresses every parity channel on the fused motion (with an intercept) and removes the fit.
-// weights: the fusion weights (1 / white-noise variance per sensor).
+// Regresses every parity channel on the fused motion (with an intercept; with `timing` also on
+// its central first and second differences; with a specific force also on it) and removes the
+// fit. weights: the fusion weights (1 / white-noise variance per sensor).
 Leakage remove_motion_leakage(const MatrixXd& h, const MatrixXd& v, const VectorXd& weights,
-                              std::span<const std::span<const double>> sensors, std::vector<std::vector<double>>& parity) {
+                              std::span<const std::span<const double>> sensors, bool timing,
+                              std::span<const std::span<const double>> force, double tau0,
+                              std::vector<std::vector<double>>& parity) {
   const Index n = h.rows();
   const Index c = h.cols();
   const Index k = v.rows();
   const std::size_t len = parity.empty() ? 0 : parity[0].size();
+  const auto cs = static_cast<std::size_t>(c);
   const MatrixXd g = (h.transpose() * weights.asDiagonal() * h).ldlt().solve(h.transpose() * weights.asDiagonal());
-  // Normal equations of [1, w^] for all channels at once, accumulated in one pass.
-  MatrixXd xtx = MatrixXd::Zero(c + 1, c + 1);
-  MatrixXd xty = MatrixXd::Zero(c + 1, k);
-  VectorXd row(c + 1);
-  VectorXd mi(n);
-  std::vector<double> fused(len * static_cast<std::size_t>(c));
-  for (std::size_t t = 0; t < len; ++t) {
-    for (Index i = 0; i < n; ++i) mi(i) = sensors[static_cast<std::size_t>(i)][t];
-    const VectorXd w = g * mi;
-    row(0) = 1.0;
-    row.tail(c) = w;
-    for (Index a = 0; a < c; ++a) fused[t * static_cast<std::size_t>(c) + static_cast<std::size_t>(a)] = w(a);
-    xtx.selfadjointView<Eigen::Lower>().rankUpdate(row);
-    for (Index j = 0; j < k; ++j) xty.col(j) += row * parity[static_cast<std::size_t>(j)][t];
-  }
-  xtx = xtx.selfadjointView<Eigen::Lower>();
-  Leakage out;
-  const double count = static_cast<double>(len);
-  VectorXd mean_w = xtx.block(1, 0, c, 1) / count;
-  const MatrixXd cov_w = xtx.block(1, 1, c, c) / count - mean_w * mean_w.transpose();
-  out.motion_rms_rad_s = std::sqrt(std::max(0.0, cov_w.trace()));
-  const MatrixXd beta = xtx.ldlt().solve(xty);  // (c + 1) x k
-  const MatrixXd b = beta.bottomRows(c).transpose();  // k x c
-  for (std::size_t t = 0; t < len; ++t) {
-    for (Index j = 0; j < k; ++j) {
-      double s = 0.0;
-      for (Index a = 0; a < c; ++a) s += b(j, a) * fused[t * static_cast<std::size_t>(c) + static_cast<std::size_t>(a)];
-      parity[static_cast<std::size_t>(j)][t] -= s;
+  std::vector<double> fused(len * cs);
+  {
+    VectorXd mi(n);
+    for (std::size_t t = 0; t < len; ++t) {
+      for (Index i = 0; i < n; ++i) mi(i) = sensors[static_cast<std::size_t>(i)][t];
+      const VectorXd w = g * mi;
+      for (std::size_t a = 0; a < cs; ++a) fused[t * cs + a] = w(static_cast<Index>(a));
     }
   }
+  // Regressors: [1, w (c), w' tau0 (c), w'' tau0^2 (c) when timing, f (3) when given]; the
+  // differences scaled by tau0 keep the normal equations well conditioned.
+  const Index groups = timing ? 3 : 1;
+  const Index nf = force.empty() ? 0 : 3;
+  const Index p = 1 + groups * c + nf;
+  auto fill = [&](std::size_t t, VectorXd& row) {
+    row(0) = 1.0;
+    const std::size_t prev = t == 0 ? 0 : t - 1;
+    const std::size_t next = t + 1 < len ? t + 1 : len - 1;
+    for (std::size_t a = 0; a < cs; ++a) {
+      const double w0 = fused[t * cs + a];
+      row(1 + static_cast<Index>(a)) = w0;
+      if (timing) {
+        const double wm = fused[prev * cs + a];
+        const double wp = fused[next * cs + a];
+        // One-sided at the ends (the curvature then 0): two samples out of the record.
+        row(1 + c + static_cast<Index>(a)) = (wp - wm) / static_cast<double>(next - prev);
+        row(1 + 2 * c + static_cast<Index>(a)) = next - prev == 2 ? wp - 2.0 * w0 + wm : 0.0;
+      }
+    }
+    for (Index a = 0; a < nf; ++a) row(1 + groups * c + a) = force[static_cast<std::size_t>(a)][t];
+  };
+  // Normal equations of all channels at once, and the channels' cross-products (residual
+  // covariance), accumulated in one pass.
+  MatrixXd xtx = MatrixXd::Zero(p, p);
+  MatrixXd xty = MatrixXd::Zero(p, k);
+  MatrixXd yty = MatrixXd::Zero(k, k);
+  VectorXd row(p);
+  VectorXd y(k);
+  for (std::size_t t = 0; t < len; ++t) {
+    fill(t, row);
+    for (Index j = 0; j < k; ++j) y(j) = parity[static_cast<std::size_t>(j)][t];
+    xtx.selfadjointView<Eigen::Lower>().rankUpdate(row);
+    xty.noalias() += row * y.transpose();
+    yty.selfadjointView<Eigen::Lower>().rankUpdate(y);
+  }
+  xtx = xtx.selfadjointView<Eigen::Lower>();
+  yty = yty.selfadjointView<Eigen::Lower>();
+  Leakage out;
+  out.timing = timing;
+  const double count = static_cast<double>(len);
+  const VectorXd mean_x = xtx.col(0) / count;
+  const MatrixXd cov_x = xtx / count - mean_x * mean_x.transpose();
+  out.motion_rms_rad_s = std::sqrt(std::max(0.0, cov_x.block(1, 1, c, c).trace()));
+  if (nf > 0) {
+    out.specific_force_rms_m_s2 = std::sqrt(std::max(0.0, cov_x.block(1 + groups * c, 1 + groups * c, nf, nf).trace()));
+  }
+  const Eigen::LDLT<MatrixXd> ldlt(xtx);
+  const MatrixXd beta = ldlt.solve(xty);  // p x k
+  // Residual covariance of the channels (k x k), then (X^T X)^-1 for the standard errors.
+  const MatrixXd resid = (yty - beta.transpose() * xty) / std::max(1.0, count - static_cast<double>(p));
+  const MatrixXd xtx_inv = ldlt.solve(MatrixXd::Identity(p, p));
+  for (std::size_t t = 0; t < len; ++t) {
+    fill(t, row);
+    for (Index j = 0; j < k; ++j) parity[static_cast<std::size_t>(j)][t] -= beta.col(j).tail(p - 1).dot(row.tail(p - 1));
+  }
   out.removed = true;
+  const MatrixXd b = beta.middleRows(1, c).transpose();  // k x c
   out.coefficients = from_eigen(b);
   const MatrixXd d = v.transpose() * b;  // n x c, minimum norm
+  MatrixXd d_time;
+  if (timing) d_time = v.transpose() * (beta.middleRows(1 + c, c).transpose() * tau0);  // s
+  MatrixXd d_force;
+  if (nf > 0) d_force = v.transpose() * beta.middleRows(1 + groups * c, nf).transpose();  // n x 3
   for (Index i = 0; i < n; ++i) {
     std::vector<double> di(static_cast<std::size_t>(c));
     for (Index a = 0; a < c; ++a) di[static_cast<std::size_t>(a)] = d(i, a);
@@ -206,7 +250,22 @@ Leakage remove_motion_leakage(const MatrixXd& h, const MatrixXd& v, const Vector
     const double along = d.row(i).dot(hi.transpose());
     out.scale_factor_ppm.push_back(1e6 * along);
     out.misalignment_mrad.push_back(c >= 3 ? 1e3 * (d.row(i).transpose() - along * hi).norm() : 0.0);
+    if (timing) out.time_offset_ms.push_back(1e3 * d_time.row(i).dot(hi.transpose()));
+    if (nf > 0) {
+      // Row i of V^T B_f: Cov = (v_i^T S v_i) (X^T X)^-1 on the force block.
+      const double s_i = v.col(i).dot(resid * v.col(i));
+      std::array<double, 3> gi{};
+      std::array<double, 3> se{};
+      for (Index a = 0; a < nf; ++a) {
+        const Index col = 1 + groups * c + a;
+        gi[static_cast<std::size_t>(a)] = d_force(i, a);
+        se[static_cast<std::size_t>(a)] = std::sqrt(std::max(0.0, s_i * xtx_inv(col, col)));
+      }
+      out.g_sensitivity_rad_s_per_m_s2.push_back(gi);
+      out.g_sensitivity_se_rad_s_per_m_s2.push_back(se);
+    }
   }
+  out.g_sensitivity_estimated = nf > 0;
   return out;
 }
 
@@ -327,12 +386,14 @@ Matrix allan_covariance(std::span<const std::span<const double>> phase, double t
 }
 
 InMotionResult in_motion_noise(const Geometry& geometry, std::span<const std::span<const double>> sensors_si,
-                               double rate_hz, const InMotionOptions& options) {
-  return in_motion_noise(measurement_matrix(geometry), sensors_si, rate_hz, options);
+                               double rate_hz, const InMotionOptions& options,
+                               std::span<const std::span<const double>> specific_force_m_s2) {
+  return in_motion_noise(measurement_matrix(geometry), sensors_si, rate_hz, options, specific_force_m_s2);
 }
 
 InMotionResult in_motion_noise(const Matrix& measurement, std::span<const std::span<const double>> sensors_si,
-                               double rate_hz, const InMotionOptions& options) {
+                               double rate_hz, const InMotionOptions& options,
+                               std::span<const std::span<const double>> specific_force_m_s2) {
   validate_confidence_level(options.ci_level, "in-motion confidence level");
   if (!(rate_hz > 0.0) || !std::isfinite(rate_hz)) {
     throw InputError(fmt::format("in-motion: the sample rate must be positive, got {} Hz", rate_hz));
@@ -367,6 +428,19 @@ InMotionResult in_motion_noise(const Matrix& measurement, std::span<const std::s
     }
   }
   if (len < 8) throw InputError(fmt::format("in-motion: {} samples per sensor; at least 8 are needed", len));
+  if (!specific_force_m_s2.empty()) {
+    if (specific_force_m_s2.size() != 3) {
+      throw InputError(fmt::format("in-motion: the specific force needs 3 components (x, y, z of the body), got {}",
+                                   specific_force_m_s2.size()));
+    }
+    for (std::size_t a = 0; a < 3; ++a) {
+      if (specific_force_m_s2[a].size() != len) {
+        throw InputError(fmt::format("in-motion: the specific force's {} component has {} samples but the gyros {}: "
+                                     "the accelerometers must be synchronous with the gyros", "xyz"[a],
+                                     specific_force_m_s2[a].size(), len));
+      }
+    }
+  }
   r.samples = len;
   const double tau0 = 1.0 / rate_hz;
 
@@ -381,12 +455,13 @@ InMotionResult in_motion_noise(const Matrix& measurement, std::span<const std::s
     // Fusion weights: each sensor's white-noise level, its in-motion Allan variance at tau0 (the
     // unweighted solution at m = 1); equal weights when the geometry cannot tell them apart.
     const MatrixXd hh = to_eigen(measurement);
-    VectorXd weights = VectorXd::Ones(static_cast<Index>(n));
-    if (r.identifiability.per_sensor) {
+    auto white_weights = [&](const std::vector<std::vector<double>>& p) {
+      VectorXd weights = VectorXd::Ones(static_cast<Index>(n));
+      if (!r.identifiability.per_sensor) return weights;
       std::vector<std::vector<double>> ph1(k);
       std::vector<std::span<const double>> sp1;
       for (std::size_t j = 0; j < k; ++j) {
-        ph1[j] = phase_from_rate(parity[j], tau0, compensated_mean(parity[j]));
+        ph1[j] = phase_from_rate(p[j], tau0, compensated_mean(p[j]));
         sp1.emplace_back(ph1[j]);
       }
       // The leakage inflates this estimate alike for the sensors the motion reaches; it only
@@ -396,8 +471,23 @@ InMotionResult in_motion_noise(const Matrix& measurement, std::span<const std::s
       const VectorXd a1 = nnls(design(to_eigen(r.parity)), vech(c1) / (s1 > 0 ? s1 : 1.0));
       const double floor = std::max(1e-12, 1e-3 * a1.mean());
       for (Index i = 0; i < weights.size(); ++i) weights(i) = 1.0 / std::max(a1(i), floor);
+      return weights;
+    };
+    VectorXd weights = white_weights(parity);
+    const bool refine = r.identifiability.per_sensor && (options.remove_timing_leakage || !specific_force_m_s2.empty());
+    if (refine) {
+      // A timing or g-sensitivity leakage can be far larger than the noise and differ between the
+      // sensors, so the weights from the raw parity can be off by orders of magnitude; the
+      // derivative regressors are noise-dominated at high frequency, and with such weights their
+      // noise would correlate with the parity's (V R G^T != 0). So: one regression, the weights
+      // again from its cleaned parity, and the regression again on the raw parity.
+      std::vector<std::vector<double>> trial = parity;
+      (void)remove_motion_leakage(hh, to_eigen(r.parity), weights, sensors_si, options.remove_timing_leakage,
+                                  specific_force_m_s2, tau0, trial);
+      weights = white_weights(trial);
     }
-    r.leakage = remove_motion_leakage(hh, to_eigen(r.parity), weights, sensors_si, parity);
+    r.leakage = remove_motion_leakage(hh, to_eigen(r.parity), weights, sensors_si, options.remove_timing_leakage,
+                                      specific_force_m_s2, tau0, parity);
   }
   std::vector<std::vector<double>> phase(k);
   for (std::size_t j = 0; j < k; ++j) phase[j] = phase_from_rate(parity[j], tau0, compensated_mean(parity[j]));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include <fmt/format.h>
 #include <fmt/ranges.h>
@@ -64,6 +65,12 @@ nlohmann::json points_json(std::span<const DevPoint> points, double to_unit, boo
 
 }  // namespace
 
+std::pair<double, std::string> g_sensitivity_unit(const Record& record) {
+  // SI rad/s per m/s^2 -> deg/h per g for gyros; else the record's unit per m/s^2.
+  if (is_gyro(record)) return {180.0 / std::numbers::pi * 3600.0 * kStandardGravity_m_s2, "deg/h/g"};
+  return {1.0 / record.rate_unit.to_si, unit_label(record) + " per m/s^2"};
+}
+
 std::vector<DevPoint> fittable_points(std::span<const DevPoint> curve) {
   std::vector<DevPoint> out;
   for (const auto& p : curve) {
@@ -86,14 +93,26 @@ std::size_t effective_phase_count(std::span<const DevPoint> curve, std::size_t n
 }
 
 InMotionUnit analyze_in_motion(const redundant::Geometry& geometry, std::vector<Record> recordings,
-                               const redundant::InMotionOptions& options, const fit::FitOptions& fit_options) {
+                               const redundant::InMotionOptions& options, const fit::FitOptions& fit_options,
+                               const std::array<std::vector<double>, 3>& specific_force_m_s2) {
   check_unit(geometry, recordings);
+  const bool force = !specific_force_m_s2[0].empty();
+  if (force && specific_force_m_s2[0].size() != recordings[0].rate_si.size()) {
+    throw InputError(fmt::format("--in-motion: the accelerometers have {} samples but the gyros {} (after any "
+                                 "--skip or other preprocessing, which the accelerometers do not get): they must be "
+                                 "synchronous; fix: drop the preprocessing or cut the files alike",
+                                 specific_force_m_s2[0].size(), recordings[0].rate_si.size()));
+  }
   InMotionUnit unit;
   unit.geometry = geometry;
   {
     std::vector<std::span<const double>> spans;
     for (const auto& r : recordings) spans.emplace_back(r.rate_si);
-    unit.result = redundant::in_motion_noise(geometry, spans, recordings[0].rate_hz, options);
+    std::vector<std::span<const double>> f;
+    if (force) {
+      for (const auto& c : specific_force_m_s2) f.emplace_back(c);
+    }
+    unit.result = redundant::in_motion_noise(geometry, spans, recordings[0].rate_hz, options, f);
   }
   const std::size_t n_phase = unit.result.samples + 1;
   for (std::size_t i = 0; i < recordings.size(); ++i) {
@@ -206,7 +225,10 @@ nlohmann::json in_motion_json(const InMotionUnit& unit, const fit::FitOptions& f
     doc["leakage"] = {{"removed", true},
                       {"coefficients", b},
                       {"motion_rms", number(lk.motion_rms_rad_s / to_unit)},
-                      {"convention", convention}};
+                      {"convention", convention},
+                      {"timing", lk.timing},
+                      {"g_sensitivity", lk.g_sensitivity_estimated}};
+    if (lk.g_sensitivity_estimated) doc["leakage"]["specific_force_rms_m_s2"] = number(lk.specific_force_rms_m_s2);
   } else {
     doc["leakage"] = {{"removed", false}};
   }
@@ -217,6 +239,17 @@ nlohmann::json in_motion_json(const InMotionUnit& unit, const fit::FitOptions& f
     if (lk.removed) {
       j["leakage"] = {{"scale_factor_ppm", number(lk.scale_factor_ppm[i])},
                       {"misalignment_mrad", number(lk.misalignment_mrad[i])}};
+      if (lk.timing) j["leakage"]["time_offset_ms"] = number(lk.time_offset_ms[i]);
+      if (lk.g_sensitivity_estimated) {
+        const auto [factor, unit_name] = g_sensitivity_unit(s.record);
+        nlohmann::json value = nlohmann::json::array();
+        nlohmann::json se = nlohmann::json::array();
+        for (std::size_t a = 0; a < 3; ++a) {
+          value.push_back(number(lk.g_sensitivity_rad_s_per_m_s2[i][a] * factor));
+          se.push_back(number(lk.g_sensitivity_se_rad_s_per_m_s2[i][a] * factor));
+        }
+        j["leakage"]["g_sensitivity"] = {{"value", value}, {"se", se}, {"unit", unit_name}, {"axes", "x, y, z of the body"}};
+      }
     }
     if (!s.identified) {
       j["reason"] = s.reason;
@@ -265,8 +298,17 @@ std::string in_motion_table(const InMotionUnit& unit) {
     out += fmt::format("# motion leakage removed (fused motion RMS {:.6g} {}); per-sensor errors relative to the "
                        "unit's best-fit frame:\n", r.leakage.motion_rms_rad_s / to_unit, label);
     for (std::size_t i = 0; i < r.leakage.scale_factor_ppm.size(); ++i) {
-      out += fmt::format("#   sensor {}: scale factor {:.6g} ppm, misalignment {:.6g} mrad\n", i + 1,
+      out += fmt::format("#   sensor {}: scale factor {:.6g} ppm, misalignment {:.6g} mrad", i + 1,
                          r.leakage.scale_factor_ppm[i], r.leakage.misalignment_mrad[i]);
+      if (r.leakage.timing) out += fmt::format(", time offset {:.4g} ms", r.leakage.time_offset_ms[i]);
+      if (r.leakage.g_sensitivity_estimated) {
+        const auto [factor, unit_name] = g_sensitivity_unit(unit.sensors[i].record);
+        const auto& g = r.leakage.g_sensitivity_rad_s_per_m_s2[i];
+        const auto& se = r.leakage.g_sensitivity_se_rad_s_per_m_s2[i];
+        out += fmt::format(", g-sensitivity ({:.4g}, {:.4g}, {:.4g}) +- ({:.2g}, {:.2g}, {:.2g}) {}", g[0] * factor,
+                           g[1] * factor, g[2] * factor, se[0] * factor, se[1] * factor, se[2] * factor, unit_name);
+      }
+      out += "\n";
     }
   }
   const auto units = fit::coefficient_units(label);

@@ -2,6 +2,8 @@
 // written as text files (deg/s), read through the loader; JSON in_motion.sensors one entry per
 // file, the table, and the refusals (exit 1 naming the cause).
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -12,6 +14,7 @@
 
 #include "cli/cli_runner.hpp"
 #include "redundant/redundant_test_support.hpp"
+#include "study/browser_support.hpp"
 
 namespace {
 
@@ -181,6 +184,114 @@ TEST(CliRedundantInMotion, BadInputExitsOneWithTheCause) {
   r = run_cli(both);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("cannot be combined"), std::string::npos) << r.err;
+}
+
+TEST(CliRedundantInMotion, ReportShowsEachSensorInMotionAndAtRestOnOneFigure) {
+  TempDir dir;
+  std::vector<double> n_deg;
+  const auto files = write_unit(dir, "dodeca", 300.0, &n_deg);
+  // At rest each sensor is 1.5 x quieter than in motion: the figure shows the gap.
+  std::vector<std::string> statics;
+  for (std::size_t i = 0; i < 6; ++i) {
+    sim::NoiseModel m;
+    m.n_unit_sqrt_s = n_deg[i] / 1.5;
+    std::string text;
+    for (double v : sim::simulate(m, 100.0, 30000, 5, i)) text += fmt::format("{:.17g}\n", v);
+    statics.push_back(dir.write(fmt::format("rest_{}.txt", i + 1), text));
+  }
+  auto args = in_motion_args("dodeca", files);
+  args.emplace_back("--static");
+  args.insert(args.end(), statics.begin(), statics.end());
+  const std::string out = dir.file("report");
+  args.insert(args.end(), {"--report", out});
+  const auto r = run_cli(args);
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_NE(r.err.find("wrote the in-motion report to"), std::string::npos) << r.err;
+  namespace fs = std::filesystem;
+  for (const char* f : {"report.json", "report.md", "report.html"}) EXPECT_TRUE(fs::exists(fs::path(out) / f)) << f;
+  const auto doc = nlohmann::json::parse(imunoise::test::slurp(out + "/report.json"));
+  const auto& figures = doc["figures"];
+  ASSERT_EQ(figures.size(), 7u);  // six sensors and the mean level
+  for (std::size_t i = 0; i < 6; ++i) {
+    const auto& f = figures[i];
+    EXPECT_EQ(f["id"], fmt::format("in_motion_{}", i + 1));
+    ASSERT_EQ(f["series"].size(), 4u) << f.dump();
+    EXPECT_EQ(f["series"][0]["name"], "in motion (parity space)");
+    EXPECT_EQ(f["series"][2]["name"], "at rest (static recording)");
+    EXPECT_EQ(f["y_label"], "Allan deviation (deg/s)");
+    // The two curves on the figure at their shortest tau: in motion 1.5 x the static level.
+    const double moving = f["series"][0]["y"][0].get<double>();
+    const double rest = f["series"][2]["y"][0].get<double>();
+    std::printf("report figure %zu: in motion / at rest at tau0 %.4f (truth 1.5)\n", i + 1, moving / rest);
+    EXPECT_NEAR(moving / rest, 1.5, 0.1) << "sensor " << i + 1;
+    EXPECT_GT(f["series"][2]["x"].size(), 5u);
+  }
+  const std::string md = imunoise::test::slurp(out + "/report.md");
+  EXPECT_NE(md.find("N ratio"), std::string::npos) << md;
+  // An existing report is not replaced without --force.
+  const auto again = run_cli(args);
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.err.find("--force"), std::string::npos) << again.err;
+  // As a person sees it: every figure drawn with its points, no script error.
+  if (const std::string why = imunoise::test::browser_missing(); !why.empty()) {
+    if (std::getenv("IMUNOISE_REQUIRE_BROWSER") != nullptr) FAIL() << why << " (required)";
+    std::printf("browser check skipped: %s\n", why.c_str());
+    return;
+  }
+  std::string log;
+  const std::string dom = imunoise::test::dump_dom(fs::path(out) / "report.html", dir.file("browser"), &log);
+  imunoise::test::expect_every_figure_drawn(dom, figures, log);
+}
+
+TEST(CliRedundantInMotion, SimulatedUnitFromTheCommandLineIsReadBack) {
+  // imunoise simulate --unit writes one file per sensor; redundant --in-motion reads them back:
+  // N recovered per sensor, and the 1000 ppm scale factor of sensor 1 seen as P_11 1000 = 500 ppm
+  // (the dodecahedral unit's minimum-norm convention, docs/redundant.md).
+  TempDir dir;
+  const std::string out = dir.file("unit");
+  const std::vector<std::string> sim{"simulate", "--unit", "dodeca", "--motion", "tumble:200+vibration:2:15",
+                                     "--rate", "100", "--duration", "300", "--N", "1e-3", "--units", "deg/s",
+                                     "--sensor-scale-ppm", "1000,0,0,0,0,0", "--seed", "5", "-o", out};
+  const auto s = run_cli(sim);
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  std::vector<std::string> files;
+  for (int i = 1; i <= 6; ++i) files.push_back(out + "/sensor" + std::to_string(i) + ".txt");
+  const auto r = run_cli(in_motion_args("dodeca", files));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto im = nlohmann::json::parse(r.out)["in_motion"];
+  ASSERT_EQ(im["samples"], 30000);
+  for (std::size_t i = 0; i < 6; ++i) {
+    const auto& sensor = im["sensors"][i];
+    EXPECT_NEAR(sensor["fit"]["terms"]["N"]["value"].get<double>(), 1e-3, 0.05e-3) << "sensor " << i + 1;
+    const double sf = sensor["leakage"]["scale_factor_ppm"].get<double>();
+    std::printf("simulate --unit round trip, sensor %zu: N %.5g deg/sqrt(s) (truth 1e-3), scale factor %.2f ppm\n",
+                i + 1, sensor["fit"]["terms"]["N"]["value"].get<double>(), sf);
+    EXPECT_NEAR(sf, i == 0 ? 500.0 : -100.0, 10.0) << "sensor " << i + 1;
+  }
+  // The same files again without --force, other output formats, a bad motion, a wrong count.
+  auto again = run_cli(sim);
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.err.find("sensor1.txt: file exists"), std::string::npos) << again.err;
+  auto bad = sim;
+  bad[4] = "spin:3";
+  again = run_cli(bad);
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.err.find("--motion term 'spin:3' is not known"), std::string::npos) << again.err;
+  bad = sim;
+  bad[14] = "1000,0";
+  again = run_cli(bad);
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.err.find("--sensor-scale-ppm: 2 values for the 6 sensors"), std::string::npos) << again.err;
+  bad = sim;
+  bad.insert(bad.end(), {"--format", "f64", "--force"});
+  again = run_cli(bad);
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.err.find("--unit writes text files"), std::string::npos) << again.err;
+  bad = sim;
+  bad.insert(bad.end(), {"--range", "100", "--force"});
+  again = run_cli(bad);
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.err.find("--unit simulates rates"), std::string::npos) << again.err;
 }
 
 }  // namespace

@@ -9,6 +9,8 @@
 //   3+1        the orthogonal triad plus (1,1,1)/sqrt 3: gain sqrt(5/6) = 0.9129, GDOP 1.581;
 //   dodeca     six axes normal to the faces of a regular dodecahedron (the icosahedron's
 //              vertex directions (0, +-1, phi) and cyclic): H^T H = 2 I, gain 0.7071, GDOP 1.2247;
+//   triads:K   K co-aligned orthogonal triads (a flight controller's K IMUs): x, y, z of triad 1,
+//              then of triad 2, ... (the order of a PX4 log's instances gyro0_x .. gyroK_z);
 //   FILE       YAML or CSV/text of unit vectors x,y,z or azimuth_deg,elevation_deg pairs
 //              (elevation from the body x-y plane); see read_geometry_file.
 // Every geometry is checked: at least 3 axes, no zero-length axis, and the axes span 3-D
@@ -51,7 +53,8 @@ inline constexpr double kTetraHalfAngleDeg = 54.735610317245346;
 /// 360 (i - 1) / N deg. InputError for N < 3 or a bad angle (0 or 180 deg: all axes parallel).
 Geometry cone_geometry(std::size_t n, double half_angle_deg);
 
-/// "tetra", "cone:N:DEG", "3+1", "dodeca", or a path to a geometry file (read_geometry_file).
+/// "tetra", "cone:N:DEG", "3+1", "dodeca", "triads:K" (1 <= K <= 64), or a path to a geometry
+/// file (read_geometry_file).
 /// InputError naming the text and the forms accepted.
 Geometry make_geometry(std::string_view spec);
 

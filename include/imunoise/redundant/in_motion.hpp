@@ -37,6 +37,7 @@
 // the weighted mean of the sensors' Allan variances (the tetrahedron: the plain mean of the
 // four), which is each sensor's Allan variance only under the assumption that all have the
 // same noise; EDF k nu under that assumption.
+#include <array>
 #include <cstddef>
 #include <span>
 #include <string>
@@ -58,6 +59,11 @@ struct InMotionOptions {
   /// Estimate the motion leaking into the parity (scale-factor and misalignment errors) by
   /// regression on the fused motion and remove it before the noise analysis (Leakage).
   bool remove_leakage = true;
+  /// With remove_leakage: also regress on the fused motion's derivative and curvature over one
+  /// sample (central differences), which removes the leakage of sensors sampled at slightly
+  /// different instants or through different filter delays (Leakage::time_offset_ms). On for
+  /// the instances of one container, each on its own clock (study::container_unit).
+  bool remove_timing_leakage = false;
 };
 
 /// The motion leaking into the parity through the sensors' scale-factor and misalignment
@@ -72,13 +78,33 @@ struct InMotionOptions {
 /// those of the minimum-norm D^ = V^T B = P D (P = V^T V), "relative to the unit's best-fit
 /// frame": a single sensor's 1000 ppm on the dodecahedral unit shows as P_ii 1000 = 500 ppm on
 /// it and the rest spread over the others (tests/redundant/test_in_motion_validation.cpp).
+///
+/// Timing (InMotionOptions::remove_timing_leakage): sensor i sampling the motion dt_i late leaks
+/// V diag(dt) H w' + V diag(dt^2 / 2) H w''; the parity is also regressed on the fused motion's
+/// central first and second differences, and time_offset_ms[i] = 1e3 (V^T B_1)_i . h_i (the
+/// minimum-norm offsets, relative to the unit: an offset common to every sensor does not reach
+/// the parity). The differences carry the fused noise, high-passed: removing B_1 w^' adds to the
+/// parity about (dt / tau0)^2 / 2 of the fused white-noise variance at tau0 (at most 1/8 for half
+/// a sample), falling as 1 / tau^2 (docs/redundant.md).
+/// g-sensitivity (a specific force given): gyro i reading g_i . f (rad/s per m/s^2) leaks
+/// V Gs f; the parity is regressed on the fused specific force too, and g_sensitivity[i] is row
+/// i of V^T B_f (minimum norm, relative to the unit like D), with its standard error.
+/// Standard errors: from the regression's residual covariance S (k x k) and (X^T X)^-1, the
+/// residuals taken white (Cov(vec B) = S (x) (X^T X)^-1): a lower bound for coloured noise.
 struct Leakage {
   bool removed = false;
+  bool timing = false;                     ///< regressed on the motion's derivative too
+  bool g_sensitivity_estimated = false;    ///< a specific force was given
   Matrix coefficients;                     ///< B (k x c): parity per unit body rate
   std::vector<std::vector<double>> relative_error;  ///< rows of D^ = V^T B (n x c)
   std::vector<double> scale_factor_ppm;    ///< 1e6 d^_i . h_i (c = 3), or 1e6 d^_i (c = 1)
   std::vector<double> misalignment_mrad;   ///< 1e3 |d^_i - (d^_i . h_i) h_i| (0 when c < 3)
   double motion_rms_rad_s = 0.0;           ///< RMS of the fused motion (minus its mean)
+  std::vector<double> time_offset_ms;      ///< per sensor, when timing (relative to the unit)
+  /// Per sensor, rad/s per m/s^2 (x, y, z of the body), with standard errors; when estimated.
+  std::vector<std::array<double, 3>> g_sensitivity_rad_s_per_m_s2;
+  std::vector<std::array<double, 3>> g_sensitivity_se_rad_s_per_m_s2;
+  double specific_force_rms_m_s2 = 0.0;    ///< RMS of the fused specific force (minus its mean)
 };
 
 /// What a parity space can identify about its sensors' Allan variances.
@@ -139,15 +165,19 @@ struct InMotionResult {
 };
 
 /// The in-motion analysis of n synchronous rate records (one span per sensor, SI, equal
-/// lengths, the rows of `measurement` in the same order) sampled at rate_hz. InputError for a
-/// count or length mismatch, fewer than 8 samples, no parity space, or
-/// (options.require_per_sensor) a geometry that cannot identify every sensor.
+/// lengths, the rows of `measurement` in the same order) sampled at rate_hz. With
+/// `specific_force_m_s2` (three spans x, y, z of the body, the length of the records: the unit's
+/// fused accelerometers) and remove_leakage, the gyros' g-sensitivity is estimated and removed
+/// (Leakage). InputError for a count or length mismatch, fewer than 8 samples, no parity space,
+/// or (options.require_per_sensor) a geometry that cannot identify every sensor.
 InMotionResult in_motion_noise(const Matrix& measurement, std::span<const std::span<const double>> sensors_si,
-                               double rate_hz, const InMotionOptions& options = {});
+                               double rate_hz, const InMotionOptions& options = {},
+                               std::span<const std::span<const double>> specific_force_m_s2 = {});
 
 /// The same for a geometry (H = measurement_matrix(geometry)).
 InMotionResult in_motion_noise(const Geometry& geometry, std::span<const std::span<const double>> sensors_si,
-                               double rate_hz, const InMotionOptions& options = {});
+                               double rate_hz, const InMotionOptions& options = {},
+                               std::span<const std::span<const double>> specific_force_m_s2 = {});
 
 /// Non-negative least squares min |A x - b|, x >= 0 (Lawson-Hanson active set), A rows x cols
 /// row-major. Exact for the small dense systems here (cols <= a few dozen).

@@ -11,10 +11,12 @@
 // 2 m_max + 2, so no tau is dropped), which gives it the in-motion precision (conservative at
 // the taus where the ratio is larger); taus whose in-motion EDF is below kMinFitEdf are left
 // out of the fit. Warnings say both.
+#include <array>
 #include <cstddef>
 #include <optional>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <nlohmann/json.hpp>
@@ -59,6 +61,13 @@ struct InMotionUnit {
 /// can be off by a factor of several; they still appear in the curve).
 inline constexpr double kMinFitEdf = 2.0;
 
+/// Standard gravity (m/s^2), for g-sensitivity in deg/h/g.
+inline constexpr double kStandardGravity_m_s2 = 9.80665;
+
+/// The factor from SI (rad/s per m/s^2) to the reported g-sensitivity unit and its name:
+/// deg/h/g for a gyro record, else the record's unit per m/s^2.
+std::pair<double, std::string> g_sensitivity_unit(const Record& record);
+
 /// The points of a curve the fit uses: finite EDF >= kMinFitEdf and a non-zero estimate.
 std::vector<DevPoint> fittable_points(std::span<const DevPoint> curve);
 
@@ -70,8 +79,12 @@ std::size_t effective_phase_count(std::span<const DevPoint> curve, std::size_t n
 /// InputError naming the files when their number differs from the geometry's axes, their rates
 /// or lengths differ, or the geometry has no parity space (no more sensors than axes); with
 /// options.require_per_sensor also when the geometry cannot identify every sensor.
+/// With `specific_force_m_s2` (x, y, z of the body, SI, the recordings' length: the unit's fused
+/// accelerometers, e.g. mean_specific_force or read_container_unit) the gyros' g-sensitivity is
+/// estimated and removed with the rest of the leakage.
 InMotionUnit analyze_in_motion(const redundant::Geometry& geometry, std::vector<Record> recordings,
-                               const redundant::InMotionOptions& options, const fit::FitOptions& fit_options);
+                               const redundant::InMotionOptions& options, const fit::FitOptions& fit_options,
+                               const std::array<std::vector<double>, 3>& specific_force_m_s2 = {});
 
 /// The ratio a / b of two fitted coefficients with its interval: each coefficient's interval is
 /// taken as log-normal (sd of ln = ln(high / low) / (2 z), z the two-sided normal quantile at
@@ -87,8 +100,9 @@ void compare_with_static(InMotionUnit& unit, std::vector<Record> static_recordin
 /// The `in_motion` document: geometry, rate_hz, samples, unit, identifiability {sensors,
 /// parity_channels, equations, rank, per_sensor, reason, unobservable}, common {description,
 /// weights, points[{tau_s, adev, edf, ci_low, ci_high}]}, leakage {removed, coefficients (B),
-/// motion_rms, convention}, sensors[{source, identified, leakage {scale_factor_ppm,
-/// misalignment_mrad}, static_fit, inflation {N, B, K: {ratio, ci_low, ci_high} | {reason}}
+/// motion_rms, convention, timing, g_sensitivity}, sensors[{source, identified, leakage
+/// {scale_factor_ppm, misalignment_mrad, time_offset_ms (timing), g_sensitivity {value, se,
+/// unit} (deg/h/g for gyros; with a specific force)}, static_fit, inflation {N, B, K: {ratio, ci_low, ci_high} | {reason}}
 /// (with static recordings), reason |
 /// curve {unit, ci_level, points[{m, tau_s, adev, n, edf, ci_low, ci_high}]}, fit (the
 /// `imunoise fit` document) | fit_error}], notes. Deviations in the recordings' unit.
