@@ -1,0 +1,252 @@
+// GMWM (include/imunoise/fit/gmwm.hpp): closed forms against the spectrum, the covariance
+// against a brute-force sum, recovery from exact curves, Monte Carlo on records from the
+// generator of gmwm_test_support.hpp (independent of src/sim), the J test, bad input.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <boost/math/distributions/binomial.hpp>
+
+#include "gmwm_test_support.hpp"
+#include "imunoise/error.hpp"
+#include "imunoise/fit/fit.hpp"
+#include "imunoise/fit/gmwm.hpp"
+
+namespace imunoise::fit {
+namespace {
+
+using gmwm_test::Ar1Spec;
+
+/// Allan variance of a sampled series with two-sided discrete spectrum s(w) (per radian,
+/// w in [-pi, pi], variance = (1/2pi) int s): (1/2pi) int s(w) 2 sin^4(m w/2) / (m^2 sin^2(w/2)) dw,
+/// by composite Simpson on [0, pi] (the integrand is even).
+/// `peak`: width of a spectral peak at w = 0 (1 - phi for an AR1), resolved by a graded mesh.
+template <class S>
+double avar_from_spectrum(S s, std::size_t m, double peak = 1.0) {
+  const double md = static_cast<double>(m);
+  auto f = [&](double w) {
+    if (w == 0.0) return 0.0;
+    const double a = std::sin(0.5 * md * w), b = std::sin(0.5 * w);
+    return s(w) * 2.0 * a * a * a * a / (md * md * b * b);
+  };
+  auto simpson = [&](double lo, double hi, std::size_t steps) {
+    const double h = (hi - lo) / static_cast<double>(steps);
+    double sum = f(lo) + f(hi);
+    for (std::size_t i = 1; i < steps; ++i) sum += (i % 2 ? 4.0 : 2.0) * f(lo + static_cast<double>(i) * h);
+    return sum * h / 3.0;
+  };
+  // Pieces [0, peak/64], then doubling up to pi, each with enough steps for m's oscillation.
+  double total = 0.0, lo = 0.0, hi = std::min(std::numbers::pi, peak / 64.0);
+  while (lo < std::numbers::pi) {
+    const auto steps = static_cast<std::size_t>(2 * (400 + std::ceil(200.0 * md * (hi - lo))));
+    total += simpson(lo, hi, steps);
+    lo = hi;
+    hi = std::min(std::numbers::pi, 2.0 * hi);
+  }
+  return 2.0 * total / (2.0 * std::numbers::pi);
+}
+
+TEST(GmwmClosedForms, Ar1MatchesItsSpectrum) {
+  const double tau0 = 0.01;
+  for (double tc : {0.003, 0.01, 0.05, 1.0, 30.0}) {
+    const double phi = std::exp(-tau0 / tc);
+    auto s = [&](double w) { return (1.0 - phi * phi) / (1.0 - 2.0 * phi * std::cos(w) + phi * phi); };
+    for (std::size_t m : {1, 2, 3, 8, 64, 256}) {
+      const double expect = avar_from_spectrum(s, m, 1.0 - phi);
+      EXPECT_NEAR(gmwm_avar_ar1(tc, tau0, m) / expect, 1.0, 1e-8) << "T_c " << tc << " m " << m;
+    }
+  }
+  // m = 1: E[(y1 - y0)^2] / 2 = sigma^2 (1 - phi).
+  EXPECT_NEAR(gmwm_avar_ar1(0.1, 0.01, 1), 1.0 - std::exp(-0.1), 1e-14);
+}
+
+TEST(GmwmClosedForms, WhiteAndQuantizationMatchTheirSpectra) {
+  const double tau0 = 0.01;
+  for (std::size_t m : {1, 2, 5, 64}) {
+    const double tau = static_cast<double>(m) * tau0;
+    // White rate noise of N = 1: per-sample variance 1/tau0, flat spectrum.
+    EXPECT_NEAR(avar_from_spectrum([&](double) { return 1.0 / tau0; }, m) / gmwm_avar_white(tau), 1.0, 1e-9);
+    // White phase noise Q = 1: the rate is its first difference / tau0.
+    auto sq = [&](double w) { return 4.0 * std::sin(0.5 * w) * std::sin(0.5 * w) / (tau0 * tau0); };
+    EXPECT_NEAR(avar_from_spectrum(sq, m) / gmwm_avar_quantization(tau), 1.0, 1e-9);
+  }
+}
+
+TEST(GmwmClosedForms, RandomWalkAndSinusoidMatchTheContinuousSpectrum) {
+  // Continuous-time rate averaged over tau: AVAR = 2 int_0^inf S(f) 2 sin^4(pi f tau)/(pi f tau)^2 df
+  // (two-sided S). RW: S = K^2 / (2 pi f)^2. Substituting u = pi f tau and integrating to
+  // u = 2000 with the tail in closed form (the tail of sin^4/u^4 averages 3/8 u^-4).
+  for (double tau : {0.01, 1.0, 100.0}) {
+    auto g = [&](double u) {
+      if (u == 0.0) return 1.0;
+      const double s = std::sin(u);
+      return s * s * s * s / (u * u * u * u);
+    };
+    const std::size_t steps = 2000000;
+    const double umax = 2000.0, h = umax / static_cast<double>(steps);
+    double sum = g(0.0) + g(umax);
+    for (std::size_t i = 1; i < steps; ++i) sum += (i % 2 ? 4.0 : 2.0) * g(static_cast<double>(i) * h);
+    const double integral = sum * h / 3.0 + 3.0 / 8.0 / (3.0 * umax * umax * umax);
+    // AVAR = 2 * int_0^inf K^2/(4 pi^2 f^2) 2 sin^4(u)/u^2 df, f = u / (pi tau):
+    //      = K^2 tau / pi^2 * int sin^4/u^4 du * ... (pi^2 factors below).
+    const double avar = 2.0 * (1.0 / (4.0 * std::numbers::pi * std::numbers::pi)) * 2.0 *
+                        (std::numbers::pi * tau) * integral;
+    EXPECT_NEAR(avar / gmwm_avar_random_walk(tau), 1.0, 1e-6) << tau;
+  }
+  // A sinusoid's averaged window mean: the Allan variance is A^2 (sin^2(x)/x)^2, x = pi f tau,
+  // checked at the quarter and the half period against a direct average of the time series.
+  const double f = 0.37, tau = 0.8;
+  double sum = 0.0;
+  const int phases = 720;
+  for (int p = 0; p < phases; ++p) {
+    const double ph = 2.0 * std::numbers::pi * p / phases;
+    auto mean = [&](double t0) {  // window mean of sin(2 pi f t + ph) over [t0, t0 + tau]
+      const double w = 2.0 * std::numbers::pi * f;
+      return (std::cos(w * t0 + ph) - std::cos(w * (t0 + tau) + ph)) / (w * tau);
+    };
+    const double d = mean(tau) - mean(0.0);
+    sum += 0.5 * d * d;
+  }
+  EXPECT_NEAR(sum / phases / gmwm_avar_sinusoid(f, tau), 1.0, 1e-9);
+}
+
+/// Brute-force covariance of the overlapping Allan variance estimates for a stationary rate
+/// process with autocovariance r(d) (Isserlis), small records only.
+std::vector<double> brute_covariance(const std::vector<std::size_t>& ms, std::size_t n_phase, double tau0,
+                                     const std::function<double(long)>& r) {
+  const std::size_t k = ms.size();
+  std::vector<double> out(k * k);
+  for (std::size_t i = 0; i < k; ++i) {
+    for (std::size_t j = 0; j < k; ++j) {
+      const long mi = static_cast<long>(ms[i]), mj = static_cast<long>(ms[j]);
+      const long ni = static_cast<long>(n_phase) - 2 * mi, nj = static_cast<long>(n_phase) - 2 * mj;
+      // a_k = tau0 (sum_{k+m}^{k+2m-1} y - sum_k^{k+m-1} y): weights over offsets 0..2m-1.
+      auto cov_ab = [&](long delta) {  // Cov(a_{l + delta}, b_l)
+        double s = 0.0;
+        for (long p = 0; p < 2 * mi; ++p) {
+          const double wp = p < mi ? -1.0 : 1.0;
+          for (long q = 0; q < 2 * mj; ++q) {
+            const double wq = q < mj ? -1.0 : 1.0;
+            s += wp * wq * r(delta + p - q);
+          }
+        }
+        return tau0 * tau0 * s;
+      };
+      double total = 0.0;
+      for (long delta = -nj + 1; delta < ni; ++delta) {
+        const long pairs = std::max(0L, std::min(ni, nj + delta) - std::max(0L, delta));
+        if (pairs == 0) continue;
+        const double c = cov_ab(delta);
+        total += static_cast<double>(pairs) * c * c;
+      }
+      const double ti = static_cast<double>(mi) * tau0, tj = static_cast<double>(mj) * tau0;
+      out[i * k + j] = 2.0 * total / (4.0 * ti * ti * tj * tj * static_cast<double>(ni) * static_cast<double>(nj));
+    }
+  }
+  return out;
+}
+
+TEST(GmwmCovariance, Ar1KernelsMatchABruteForceSum) {
+  const double tau0 = 0.01;
+  const std::size_t n_phase = 1200;
+  const std::vector<std::size_t> ms{1, 2, 4, 16, 64};
+  const std::vector<double> tcs{0.004, 0.05, 2.0};
+  const std::vector<double> var{0.7, 1.3, 0.4};
+  const double n2 = 2e-3;  // white N^2 as well
+  auto r = [&](long d) {
+    double v = d == 0 ? n2 / tau0 : 0.0;
+    for (std::size_t g = 0; g < tcs.size(); ++g) v += var[g] * std::exp(-std::abs(static_cast<double>(d)) * tau0 / tcs[g]);
+    return v;
+  };
+  const auto expect = brute_covariance(ms, n_phase, tau0, r);
+  const GmwmCovarianceBasis basis(ms, n_phase, tau0, tcs);
+  const double theta[5] = {0.0, n2, 0.0, 0.0, 0.0};
+  const auto got = basis.covariance(theta, var);
+  for (std::size_t e = 0; e < expect.size(); ++e) {
+    EXPECT_NEAR(got[e] / expect[e], 1.0, 2e-6) << "entry " << e;
+  }
+}
+
+/// The exact curve of a model (noise-free), for recovery checks.
+std::vector<double> exact_avar(const std::vector<std::size_t>& ms, double tau0, double n, double k,
+                               const std::vector<Ar1Spec>& ar1) {
+  std::vector<double> a;
+  for (std::size_t m : ms) {
+    const double tau = static_cast<double>(m) * tau0;
+    double v = n * n * gmwm_avar_white(tau) + k * k * gmwm_avar_random_walk(tau);
+    for (const auto& g : ar1) v += g.sigma * g.sigma * gmwm_avar_ar1(g.tc_s, tau0, m);
+    a.push_back(v);
+  }
+  return a;
+}
+
+TEST(GmwmFit, RecoversTheModelFromItsExactCurve) {
+  const double tau0 = 0.01;
+  const std::size_t n_phase = 1080001;  // 3 h at 100 Hz
+  std::vector<std::size_t> ms;
+  for (std::size_t m = 1; 2 * m < n_phase; m *= 2) ms.push_back(m);
+  const std::vector<Ar1Spec> ar1{{2e-4, 2.0}, {1e-4, 20.0}};
+  const auto avar = exact_avar(ms, tau0, 1.7e-4, 1e-5, ar1);
+  GmwmOptions o;
+  parse_gmwm_terms("N,K,GM,GM", o);
+  const GmwmResult r = fit_gmwm(ms, avar, n_phase, tau0, o);
+  ASSERT_EQ(r.status, GmwmStatus::converged) << r.message;
+  ASSERT_EQ(r.terms.size(), 4u);
+  EXPECT_NEAR(r.terms[0].magnitude.value / 1.7e-4, 1.0, 1e-4);
+  EXPECT_NEAR(r.terms[1].magnitude.value / 1e-5, 1.0, 1e-3);
+  EXPECT_NEAR(r.terms[2].magnitude.value / 2e-4, 1.0, 1e-3);
+  EXPECT_NEAR(r.terms[2].shape.value / 2.0, 1.0, 1e-3);
+  EXPECT_NEAR(r.terms[3].magnitude.value / 1e-4, 1.0, 1e-3);
+  EXPECT_NEAR(r.terms[3].shape.value / 20.0, 1.0, 1e-3);
+  EXPECT_LT(r.j_statistic, 1e-6);
+}
+
+TEST(GmwmFit, TooManyTermsForTheScalesIsAnInputError) {
+  std::vector<std::size_t> ms{1, 2, 4, 8, 16};
+  const auto avar = exact_avar(ms, 0.01, 1e-3, 0.0, {});
+  GmwmOptions o;
+  parse_gmwm_terms("N,GM,GM", o);
+  try {
+    fit_gmwm(ms, avar, 100, 0.01, o);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("5 parameters but the curve has only 5 dyadic scales"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_THROW(parse_gmwm_terms("N,XX", o), InputError);
+  GmwmOptions twice;
+  twice.terms = {GmwmTerm::N, GmwmTerm::N};
+  EXPECT_THROW(fit_gmwm(ms, avar, 100, 0.01, twice), InputError);
+}
+
+TEST(GmwmFit, ExploreOneRecord) {
+  if (std::getenv("IMUNOISE_GMWM_EXPLORE") == nullptr) GTEST_SKIP();
+  const double tau0 = 0.01;
+  const std::size_t n = static_cast<std::size_t>(std::atof(std::getenv("IMUNOISE_GMWM_EXPLORE")) * 3600 * 100);
+  const std::vector<Ar1Spec> ar1{{2e-4, 2.0}, {1e-4, 20.0}};
+  const auto rate = gmwm_test::make_rate(n, tau0, 1.7e-4, 1e-6, ar1, 1);
+  const auto c = gmwm_test::octave_curve(rate, tau0);
+  GmwmOptions o;
+  parse_gmwm_terms(std::getenv("IMUNOISE_GMWM_TERMS") ? std::getenv("IMUNOISE_GMWM_TERMS") : "N,K,GM,GM", o);
+  if (std::getenv("IMUNOISE_GMWM_BOOT")) o.bootstrap = std::atoi(std::getenv("IMUNOISE_GMWM_BOOT"));
+  const GmwmResult r = fit_gmwm(c.m, c.avar, c.n_phase, tau0, o);
+  std::printf("%s %s J %.2f dof %zu p %.3f wvic %.2f\n", gmwm_status_name(r.status).c_str(), r.model.c_str(),
+              r.j_statistic, r.dof, r.j_p_value, r.wvic);
+  for (const auto& t : r.terms) {
+    std::printf("  %s %.4g [%.4g %.4g] boot [%.4g %.4g] %d  shape %.4g [%.4g %.4g] boot [%.4g %.4g] %s\n",
+                gmwm_term_name(t.kind), t.magnitude.value, t.magnitude.ci_low, t.magnitude.ci_high,
+                t.magnitude_boot_low, t.magnitude_boot_high, t.magnitude.identified, t.shape.value, t.shape.ci_low,
+                t.shape.ci_high, t.shape_boot_low, t.shape_boot_high, t.magnitude.note.c_str());
+  }
+  for (const auto& cand : r.candidates) {
+    std::printf("  cand %s p %d J %.2f pen %.2f wvic %.2f %s\n", cand.model.c_str(), cand.parameters,
+                cand.j_statistic, cand.penalty, cand.wvic, cand.selected ? "*" : "");
+  }
+}
+
+}  // namespace
+}  // namespace imunoise::fit
