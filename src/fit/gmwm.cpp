@@ -260,7 +260,7 @@ Matrix model_covariance(const Layout& layout, const Vector& p, const GmwmCurve& 
   return sigma;
 }
 
-Matrix whitener_of(const Matrix& sigma) { return whitener(sigma, true); }
+Matrix whitener_of(const Matrix& sigma, const GmwmCurve& c) { return whitener(sigma, c.full_weight); }
 
 Vector nnls_lh(const Matrix& a, const Vector& b) {
   // Lawson-Hanson active set on column-scaled a.

@@ -23,6 +23,7 @@ struct GmwmCurve {
   std::size_t n_phase = 0;
   double tau0_s = 0.0;
   unsigned threads = 1;  ///< for the covariance sums
+  bool full_weight = false;  ///< W = Sigma^-1 (true) or diag(Sigma)^-1 (GmwmOptions::full_weight)
 };
 
 /// Where each term's parameters sit in the parameter vector (log variance, then log T_c or
@@ -52,8 +53,9 @@ std::string model_name(const std::vector<GmwmTerm>& terms);
 Vector model_avar(const Layout& layout, const Vector& p, const GmwmCurve& c, Matrix* jacobian);
 /// Covariance of the estimates under the model p (GmwmCovarianceBasis).
 Matrix model_covariance(const Layout& layout, const Vector& p, const GmwmCurve& c);
-/// W with W Sigma W' = I.
-Matrix whitener_of(const Matrix& sigma);
+/// The square root Wh of the weight W = Wh' Wh: Sigma^-1 (full, Wh Sigma Wh' = I) or
+/// diag(Sigma)^-1 (c.full_weight false).
+Matrix whitener_of(const Matrix& sigma, const GmwmCurve& c);
 /// Non-negative least squares (Lawson-Hanson).
 Vector nnls_lh(const Matrix& a, const Vector& b);
 Bounds bounds_for(const Layout& layout, const GmwmCurve& c);

@@ -198,8 +198,40 @@ std::vector<bool> at_floor(const Layout& layout, const Vector& p, const Bounds& 
   return out;
 }
 
-/// (D' W D)^-1 on the free parameters (others: infinite variance), D whitened.
-Matrix log_covariance(const Matrix& dw, const std::vector<bool>& fixed) {
+/// The generalised J statistic and its degrees of freedom (gmwm.hpp): e' C^+ e with C the
+/// covariance of the whitened residual e under the model, rank k - p.
+std::pair<double, std::size_t> j_test(const Vector& e, const Matrix& dw_all, const Matrix& s,
+                                      const std::vector<bool>& fixed) {
+  std::vector<Eigen::Index> free;
+  for (Eigen::Index j = 0; j < dw_all.cols(); ++j) {
+    if (!fixed[static_cast<std::size_t>(j)]) free.push_back(j);
+  }
+  const Eigen::Index k = e.size();
+  Matrix p = Matrix::Zero(k, k);
+  if (!free.empty()) {
+    Matrix dw(k, static_cast<Eigen::Index>(free.size()));
+    for (std::size_t f = 0; f < free.size(); ++f) dw.col(static_cast<Eigen::Index>(f)) = dw_all.col(free[f]);
+    p = dw * (dw.transpose() * dw).completeOrthogonalDecomposition().pseudoInverse() * dw.transpose();
+  }
+  const Matrix q = Matrix::Identity(k, k) - p;
+  const Matrix cr = q * s * q.transpose();
+  const Eigen::SelfAdjointEigenSolver<Matrix> es(0.5 * (cr + cr.transpose()));
+  const double top = es.eigenvalues().maxCoeff();
+  // The projector removes p directions exactly: keep the k - p largest eigenvalues.
+  const auto rank = static_cast<Eigen::Index>(std::max<std::ptrdiff_t>(0, k - static_cast<Eigen::Index>(free.size())));
+  double j = 0.0;
+  for (Eigen::Index i = k - rank; i < k; ++i) {
+    const double lambda = es.eigenvalues()(i);
+    if (!(lambda > 1e-14 * top)) continue;
+    const double proj = es.eigenvectors().col(i).dot(e);
+    j += proj * proj / lambda;
+  }
+  return {j, static_cast<std::size_t>(rank)};
+}
+
+/// Sandwich covariance of the log parameters: A S A' with A = (Dw' Dw)^-1 Dw' (whitened), on
+/// the free parameters (others: infinite variance).
+Matrix log_covariance(const Matrix& dw, const Matrix& s, const std::vector<bool>& fixed) {
   const Eigen::Index n = dw.cols();
   std::vector<Eigen::Index> free;
   for (Eigen::Index j = 0; j < n; ++j) {
@@ -212,7 +244,8 @@ Matrix log_covariance(const Matrix& dw, const std::vector<bool>& fixed) {
   for (std::size_t f = 0; f < free.size(); ++f) sub.col(static_cast<Eigen::Index>(f)) = dw.col(free[f]);
   const Matrix info = sub.transpose() * sub;
   const Eigen::CompleteOrthogonalDecomposition<Matrix> cod(info);
-  const Matrix inv = cod.pseudoInverse();
+  const Matrix a_mat = cod.pseudoInverse() * sub.transpose();
+  const Matrix inv = a_mat * s * a_mat.transpose();
   for (std::size_t a = 0; a < free.size(); ++a) {
     for (std::size_t b = 0; b < free.size(); ++b) {
       cov(free[a], free[b]) = inv(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
@@ -264,7 +297,7 @@ Weighted iterate_weights(const Layout& layout, const GmwmCurve& c, const Matrix&
   w.whiten = whiten0;
   for (int pass = 0; pass < passes && w.fit.ok; ++pass) {
     w.sigma = model_covariance(layout, w.fit.lm.p, c);
-    w.whiten = whitener_of(w.sigma);
+    w.whiten = whitener_of(w.sigma, c);
     const Vector warm = w.fit.lm.p;
     // Later passes: from the previous optimum and from the starts (the weight changed).
     ModelFit next = pass == 0 ? fit_model(layout, c, w.whiten, &warm) : fit_model(layout, c, w.whiten, &warm);
@@ -276,7 +309,7 @@ Weighted iterate_weights(const Layout& layout, const GmwmCurve& c, const Matrix&
   if (w.fit.ok) {
     // The final covariance at the final parameters (J with W at the fitted model).
     w.sigma = model_covariance(layout, w.fit.lm.p, c);
-    w.whiten = whitener_of(w.sigma);
+    w.whiten = whitener_of(w.sigma, c);
     const Vector y = Eigen::Map<const Vector>(c.avar.data(), static_cast<Eigen::Index>(c.avar.size()));
     w.fit.lm.cost = (w.whiten * (y - model_avar(layout, w.fit.lm.p, c, nullptr))).squaredNorm();
   }
@@ -304,7 +337,7 @@ Matrix initial_whitener(const GmwmCurve& c) {
   double t5[kTermCount];
   for (int j = 0; j < kTermCount; ++j) t5[j] = theta(j);
   const GmwmCovarianceBasis basis(c.m, c.n_phase, c.tau0_s, {}, theta(kB) > 0.0, c.threads);
-  return whitener_of(to_matrix(basis.covariance(t5, {}), c.m.size()));
+  return whitener_of(to_matrix(basis.covariance(t5, {}), c.m.size()), c);
 }
 
 std::vector<std::vector<GmwmTerm>> auto_candidates(int max_gm) {
@@ -341,6 +374,7 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
   c.n_phase = n_phase;
   c.tau0_s = tau0_s;
   c.threads = options.threads;
+  c.full_weight = options.full_weight;
   for (std::size_t i = 0; i < m.size(); ++i) {
     const bool dyadic = m[i] > 0 && (m[i] & (m[i] - 1)) == 0;
     if (dyadic && avar[i] > 0.0 && std::isfinite(avar[i]) && n_phase > 2 * m[i]) {
@@ -408,11 +442,17 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
         // flexible description of the curve): with W = Sigma_ref^-1 the trace is the number of
         // parameters the data determine (a term at its floor or a rank-deficient direction
         // counts 0), docs/fit.md.
+        const Matrix sigma_ref = ref.fit.ok ? ref.sigma : Matrix(wh.inverse() * wh.inverse().transpose());
+        const Vector e = wh * (Eigen::Map<const Vector>(c.avar.data(), static_cast<Eigen::Index>(k)) -
+                               model_avar(layout, f.lm.p, c, nullptr));
+        const auto [j, dof] = j_test(e, wh * d, wh * sigma_ref * wh.transpose(), fixed);
         cand.converged = f.lm.converged;
-        cand.j_statistic = f.lm.cost;
-        cand.j_p_value = chi2_upper(f.lm.cost, cand.dof);
-        cand.penalty = wvic_penalty(wh, ref.fit.ok ? ref.sigma : Matrix(wh.inverse() * wh.inverse().transpose()), d, fixed);
-        cand.wvic = cand.j_statistic + cand.penalty;
+        cand.objective = f.lm.cost;
+        cand.j_statistic = j;
+        cand.dof = dof;
+        cand.j_p_value = chi2_upper(j, dof);
+        cand.penalty = wvic_penalty(wh, sigma_ref, d, fixed);
+        cand.wvic = cand.objective + cand.penalty;
         // Strictly better only: a larger candidate whose extra terms ran to their floor ties
         // with the smaller one it reduces to, and the smaller one is kept.
         if (!std::isfinite(best) || cand.wvic < best - 1e-6 * std::abs(best)) {
@@ -442,13 +482,19 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
   result.message = lm.converged ? fmt::format("converged after {} iterations ({} weight passes)", lm.iterations,
                                               fin.weight_passes)
                                 : fmt::format("no convergence in {} iterations: last iterate", lm.iterations);
-  result.dof = k - static_cast<std::size_t>(layout.parameters);
-  result.j_statistic = lm.cost;
-  result.j_p_value = chi2_upper(lm.cost, result.dof);
   Matrix d;
   const Vector model = model_avar(layout, lm.p, c, &d);
   const Bounds bounds = bounds_for(layout, c);
   const auto fixed = at_floor(layout, lm.p, bounds);
+  const Matrix s_white = fin.whiten * fin.sigma * fin.whiten.transpose();
+  {
+    const Vector e = fin.whiten * (Eigen::Map<const Vector>(c.avar.data(), static_cast<Eigen::Index>(k)) - model);
+    const auto [j, dof] = j_test(e, fin.whiten * d, s_white, fixed);
+    result.j_statistic = j;
+    result.dof = dof;
+    result.j_p_value = chi2_upper(j, dof);
+  }
+  result.objective = lm.cost;
   result.wvic = lm.cost + wvic_penalty(fin.whiten, fin.sigma, d, fixed);
   if (!options.automatic) {
     GmwmCandidate cand;
@@ -457,8 +503,9 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
     cand.dof = result.dof;
     cand.j_statistic = result.j_statistic;
     cand.j_p_value = result.j_p_value;
+    cand.objective = result.objective;
     cand.wvic = result.wvic;
-    cand.penalty = result.wvic - result.j_statistic;
+    cand.penalty = result.wvic - result.objective;
     cand.converged = lm.converged;
     cand.selected = true;
     result.candidates.push_back(cand);
@@ -469,7 +516,7 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
   }
 
   // Intervals: delta method on the log scale, W at the fitted model.
-  const Matrix cov = log_covariance(fin.whiten * d, fixed);
+  const Matrix cov = log_covariance(fin.whiten * d, s_white, fixed);
   std::vector<Vector> boot;
   if (options.bootstrap > 0) {
     boot = bootstrap_parameters(layout, lm.p, c, fin.whiten, options.bootstrap, options.seed, options.threads);

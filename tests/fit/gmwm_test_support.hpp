@@ -13,7 +13,14 @@ namespace imunoise::gmwm_test {
 
 class Normals {
  public:
-  explicit Normals(std::uint64_t seed) : state_(seed * 0x9E3779B97F4A7C15ULL + 0x632BE59BD9B4E019ULL) {}
+  // The seed is hashed (one splitmix64 output) so that seeds s and s + 1 give unrelated streams
+  // (a plain multiple of the increment would shift one stream by one draw).
+  explicit Normals(std::uint64_t seed) {
+    std::uint64_t z = seed + 0x632BE59BD9B4E019ULL;
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+    state_ = z ^ (z >> 31);
+  }
   double operator()() {
     if (has_spare_) {
       has_spare_ = false;
@@ -36,7 +43,7 @@ class Normals {
     z ^= z >> 31;
     return static_cast<double>(z >> 11) * 0x1.0p-53;
   }
-  std::uint64_t state_;
+  std::uint64_t state_ = 0;
   double spare_ = 0.0;
   bool has_spare_ = false;
 };
