@@ -8,12 +8,13 @@ namespace imunoise::cli {
 void add_fit_options(CLI::App& command, FitOptionsCli& options) {
   command.add_option("--method", options.method,
                      "wls (weighted NNLS, default), ols (the paper's least squares), slope "
-                     "(IEEE 952 read-off)")
+                     "(IEEE 952 read-off), gmwm (wavelet moments, several GM terms)")
       ->capture_default_str();
   command.add_option("--terms", options.terms,
                      "terms to fit, comma list of Q,N,B,K,R (R only on request) and the optional "
                      "GM (first-order Gauss-Markov) and SIN (sinusoid), each kept only when the "
-                     "data support it (wls)")
+                     "data support it (wls); gmwm: GM may repeat (N,K,GM,GM), or auto (WVIC "
+                     "selection; the gmwm default)")
       ->capture_default_str();
   command.add_option("--level", options.level, "confidence level of the intervals")
       ->capture_default_str()
@@ -38,6 +39,10 @@ void add_fit_options(CLI::App& command, FitOptionsCli& options) {
   command.add_flag("--exact-model", options.exact_model,
                    "weights and intervals assume the power-law model is exact (no "
                    "model-mismatch scatter, even when chi2 rejects the model)");
+  command.add_option("--bootstrap", options.bootstrap,
+                     "gmwm: parametric-bootstrap replicates for the intervals (0: delta method only)")
+      ->check(CLI::Range(0, 100000));
+  command.add_option("--seed", options.seed, "gmwm: seed of the bootstrap")->capture_default_str();
   command.add_flag("--no-auto-terms", options.no_auto_terms,
                    "wls: do not try the Gauss-Markov and sinusoid terms automatically when chi2 "
                    "rejects the power-law model and the curve has a bump");
@@ -55,7 +60,15 @@ fit::FitOptions to_fit_options(const FitOptionsCli& options) {
   fo.exclude_distorted = !options.keep_short_taus;
   fo.model_mismatch = !options.exact_model;
   fo.auto_extra_terms = !options.no_auto_terms;
-  fit::parse_terms(options.terms, fo);
+  if (fo.method == fit::Method::gmwm) {
+    // --terms keeps its wls default text when not given: gmwm then selects by WVIC.
+    fit::parse_gmwm_terms(options.terms == "Q,N,B,K" ? "auto" : options.terms, fo.gmwm);
+    fo.gmwm.bootstrap = options.bootstrap;
+    fo.gmwm.seed = options.seed;
+  } else {
+    if (options.bootstrap > 0) throw InputError("--bootstrap needs --method gmwm");
+    fit::parse_terms(options.terms, fo);
+  }
   std::string why;
   if (!fo.IsValid(&why)) throw InputError("fit options: " + why);
   return fo;

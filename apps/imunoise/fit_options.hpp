@@ -3,6 +3,7 @@
 // for every subcommand that fits (fit, analyze, fleet), so each accepts the same options.
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <string>
 
 #include "imunoise/fit/fit.hpp"
@@ -21,6 +22,8 @@ struct FitOptionsCli {
   bool keep_short_taus = false;
   bool exact_model = false;
   bool no_auto_terms = false;
+  int bootstrap = 0;       ///< gmwm: parametric bootstrap replicates
+  std::uint64_t seed = 1;  ///< gmwm: bootstrap seed
 };
 
 /// Registers --method --terms --level --selection --min-dominant-taus --gls --tau-min

@@ -33,10 +33,13 @@
 #include <cmath>
 #include <cstdint>
 #include <numbers>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include "imunoise/error.hpp"
 #include "imunoise/fit/fit.hpp"
+#include "imunoise/fit/gmwm.hpp"
 
 namespace imunoise::fit {
 namespace {
@@ -71,6 +74,9 @@ double gm_shape_subtracted(double x) {
 }
 
 struct PairKernel {
+  using Sums = Products;
+  /// The flicker kernel has the only long tails: stop when its B-B sum is converged.
+  static bool tail_done(const Sums& part, const Sums& total) { return part[9] < 1e-9 * total[9]; }
   double mi, mj;  // averaging factors
   double ni, nj;  // term counts
   double tau0;
@@ -148,11 +154,133 @@ struct PairKernel {
   }
 };
 
-void add_to(Products& total, const Products& part) {
+/// The AR1 (point-sampled Gauss-Markov) kernel for unit variance, without the part the second
+/// differences annihilate: C(t) = -(A e^-x + B T x), x = |t| / T, written as
+/// -(A s(x) + (B T - A) x) with s(x) = e^-x - 1 + x - x^2/2 when T >= tau0 (gmwm.hpp).
+struct Ar1Kernel {
+  double tc = 0.0;
+  double a = 0.0;        // tau0^2 phi / (1 - phi)^2
+  double linear = 0.0;   // B T - A (T >= tau0) or B T (T < tau0)
+  bool subtracted = false;
+  Ar1Kernel() = default;
+  Ar1Kernel(double tc_s, double tau0_s) : tc(tc_s), subtracted(tc_s >= tau0_s) {
+    const double u = 0.5 * tau0_s / tc_s;  // half of tau0 / T
+    const double sh = std::sinh(u);
+    a = tau0_s * tau0_s / (4.0 * sh * sh);
+    const double bt = 0.5 * tau0_s * tc_s / std::tanh(u);
+    if (!subtracted) {
+      linear = bt;
+    } else if (u < 1e-2) {
+      // T^2 (u coth u - u^2 / sinh^2 u) by its series (the difference cancels).
+      linear = tc_s * tc_s * u * u * (2.0 / 3.0 - 4.0 * u * u / 45.0);
+    } else {
+      linear = bt - a;
+    }
+  }
+  double operator()(double t_abs) const {
+    const double x = t_abs / tc;
+    // e^-x below 1e-30 of the polynomial part is left out (it is below the sums' accuracy).
+    if (subtracted) return -(a * (x > 70.0 ? -1.0 + x - 0.5 * x * x : gm_shape_subtracted(x)) + linear * x);
+    return -(a * (x > 70.0 ? 0.0 : std::exp(-x)) + linear * x);
+  }
+};
+
+/// Power-law kernels (Q, N, B, K) and up to kMaxAr1 AR1 kernels, their products a <= b.
+struct CompositeKernel {
+  static constexpr std::size_t kMaxRandom = 4 + GmwmCovarianceBasis::kMaxAr1;
+  static constexpr std::size_t kMaxProducts = kMaxRandom * (kMaxRandom + 1) / 2;
+  using Sums = std::array<double, kMaxProducts>;
+  double mi, mj, ni, nj, tau0;
+  std::size_t randoms = 4;
+  std::array<Ar1Kernel, GmwmCovarianceBasis::kMaxAr1> ar1{};
+  double finest_tc = 0.0;  // shortest correlation time (0: none)
+
+  bool flicker = true;     // false: the flicker kernel is left out (its products are 0)
+  /// Tails: the flicker kernel (power-law tail) and the AR1 kernels (e^-|t|/T beyond the
+  /// breakpoints) are summed out until every diagonal product they feed has converged.
+  bool tail_done(const Sums& part, const Sums& total) const {
+    std::size_t idx = 0;
+    for (std::size_t a = 0; a < randoms; ++a) {
+      if ((a == 2 && flicker) || a >= 4) {
+        if (part[idx] > 1e-9 * total[idx]) return false;
+      }
+      idx += randoms - a;  // (a, a) -> (a + 1, a + 1)
+    }
+    return true;
+  }
+  std::array<double, kMaxRandom> f(double delta, bool discrete) const {
+    static constexpr double cc[3] = {1.0, -2.0, 1.0};
+    std::array<double, kMaxRandom> out{};
+    for (int p = 0; p < 3; ++p) {
+      for (int q = 0; q < 3; ++q) {
+        const double u = delta + p * mi - q * mj;
+        const double weight = cc[p] * cc[q];
+        const double t = std::abs(u) * tau0;
+        if (discrete && u == 0.0) out[0] += weight;
+        out[1] += weight * (-0.5 * t);
+        if (flicker && t > 0.0) out[2] += weight * (t * t * std::log(t) / (2.0 * std::numbers::pi));
+        out[3] += weight * (t * t * t / 12.0);
+        for (std::size_t g = 0; g + 4 < randoms; ++g) out[4 + g] += weight * ar1[g](t);
+      }
+    }
+    return out;
+  }
+  double w(double delta) const {
+    return std::max(0.0, std::min(ni, nj + delta) - std::max(0.0, delta));
+  }
+  void add_g(double delta, bool discrete, double scale, Sums& acc) const {
+    const double weight = scale * w(delta);
+    if (weight == 0.0) return;
+    const auto v = f(delta, discrete);
+    std::size_t idx = 0;
+    for (std::size_t a = 0; a < randoms; ++a) {
+      for (std::size_t b = a; b < randoms; ++b) acc[idx++] += weight * v[a] * v[b];
+    }
+  }
+  Sums piece(std::int64_t a, std::int64_t b) const {
+    if (finest_tc > 0.0 && b - a > kDirectPiece) {
+      const auto first = std::max<std::int64_t>(
+          kDirectPiece, static_cast<std::int64_t>(std::ceil(finest_tc / tau0)));
+      std::vector<std::int64_t> cuts{a, b};
+      const std::int64_t mid = a + (b - a) / 2;
+      for (std::int64_t len = first, x = a + first; x < mid; len *= 2, x += len) cuts.push_back(x);
+      for (std::int64_t len = first, x = b - first; x > mid; len *= 2, x -= len) cuts.push_back(x);
+      std::sort(cuts.begin(), cuts.end());
+      cuts.erase(std::unique(cuts.begin(), cuts.end()), cuts.end());
+      Sums acc{};
+      for (std::size_t c = 0; c + 1 < cuts.size(); ++c) {
+        const Sums part = smooth_piece(cuts[c], cuts[c + 1]);
+        for (std::size_t i = 0; i < acc.size(); ++i) acc[i] += part[i];
+      }
+      return acc;
+    }
+    return smooth_piece(a, b);
+  }
+  Sums smooth_piece(std::int64_t a, std::int64_t b) const {
+    Sums acc{};
+    if (b - a <= kDirectPiece) {
+      for (std::int64_t d = a; d < b; ++d) add_g(static_cast<double>(d), true, 1.0, acc);
+      return acc;
+    }
+    const double half = 0.5 * static_cast<double>(b - a);
+    const double mid = 0.5 * static_cast<double>(a + b);
+    for (std::size_t k = 0; k < kGlNodes.size(); ++k) {
+      add_g(mid + half * kGlNodes[k], false, half * kGlWeights[k], acc);
+    }
+    add_g(static_cast<double>(a), true, 0.5, acc);
+    add_g(static_cast<double>(b), true, -0.5, acc);
+    return acc;
+  }
+};
+
+template <class Sums>
+void add_to(Sums& total, const Sums& part) {
   for (std::size_t i = 0; i < total.size(); ++i) total[i] += part[i];
 }
 
-Products pair_sum(const PairKernel& kernel) {
+template <class Kernel>
+typename Kernel::Sums pair_sum(const Kernel& kernel) {
+  using Sums = typename Kernel::Sums;
   const auto mi = static_cast<std::int64_t>(kernel.mi);
   const auto mj = static_cast<std::int64_t>(kernel.mj);
   const auto ni = static_cast<std::int64_t>(kernel.ni);
@@ -168,27 +296,26 @@ Products pair_sum(const PairKernel& kernel) {
   for (auto& b : bps) b = std::clamp(b, lo, hi);
   std::sort(bps.begin(), bps.end());
   bps.erase(std::unique(bps.begin(), bps.end()), bps.end());
-  Products total{};
+  Sums total{};
   for (std::size_t s = 0; s + 1 < bps.size(); ++s) add_to(total, kernel.piece(bps[s], bps[s + 1]));
   kernel.add_g(static_cast<double>(bps.back()), true, 1.0, total);
   // Tails of the flicker kernel (the others vanish outside the breakpoints), outward over
   // pieces that double in length, until a piece adds less than 1e-9 of the B-B sum.
-  constexpr std::size_t kBB = 9;  // (2,2)
   const std::int64_t span = std::max<std::int64_t>(bps.back() - bps.front(), 8);
   std::int64_t start = bps.back() + 1;
   for (std::int64_t len = span; start < hi; len *= 2) {
     const std::int64_t end = std::min(hi, start + len);
-    const Products part = kernel.piece(start, end);
+    const Sums part = kernel.piece(start, end);
     add_to(total, part);
-    if (part[kBB] < 1e-9 * total[kBB]) break;
+    if (kernel.tail_done(part, total)) break;
     start = end;
   }
   std::int64_t end = bps.front();
   for (std::int64_t len = span; end > lo; len *= 2) {
     const std::int64_t begin = std::max(lo, end - len);
-    const Products part = kernel.piece(begin, end);
+    const Sums part = kernel.piece(begin, end);
     add_to(total, part);
-    if (part[kBB] < 1e-9 * total[kBB]) break;
+    if (kernel.tail_done(part, total)) break;
     end = begin;
   }
   return total;
@@ -265,6 +392,94 @@ std::vector<double> CovarianceBasis::covariance(std::span<const double> theta,
 std::vector<double> curve_covariance(std::span<const std::size_t> m_list, std::size_t n_phase,
                                      double tau0_s, std::span<const double> theta) {
   return CovarianceBasis(m_list, n_phase, tau0_s).covariance(theta);
+}
+
+GmwmCovarianceBasis::GmwmCovarianceBasis(std::span<const std::size_t> m_list, std::size_t n_phase,
+                                         double tau0_s, std::span<const double> ar1_times_s,
+                                         bool flicker, unsigned threads)
+    : k_(m_list.size()), randoms_(4 + ar1_times_s.size()) {
+  if (ar1_times_s.size() > kMaxAr1) {
+    throw InputError("wavelet-variance covariance: at most " + std::to_string(kMaxAr1) +
+                     " Gauss-Markov terms");
+  }
+  if (!(tau0_s > 0.0)) throw InputError("wavelet-variance covariance: tau0 must be positive");
+  for (std::size_t i = 0; i < k_; ++i) {
+    if (m_list[i] == 0 || n_phase <= 2 * m_list[i]) {
+      throw InputError("wavelet-variance covariance: averaging factor " + std::to_string(m_list[i]) +
+                       " leaves no term in " + std::to_string(n_phase) + " phase samples");
+    }
+  }
+  CompositeKernel base{};
+  base.tau0 = tau0_s;
+  base.randoms = randoms_;
+  base.flicker = flicker;
+  for (std::size_t g = 0; g < ar1_times_s.size(); ++g) {
+    const double tc = ar1_times_s[g];
+    if (!(tc > 0.0) || !std::isfinite(tc)) {
+      throw InputError("wavelet-variance covariance: a Gauss-Markov correlation time must be > 0");
+    }
+    base.ar1[g] = Ar1Kernel(tc, tau0_s);
+    base.finest_tc = base.finest_tc == 0.0 ? tc : std::min(base.finest_tc, tc);
+  }
+  const std::size_t products = randoms_ * (randoms_ + 1) / 2;
+  products_.assign(k_ * k_ * products, 0.0);
+  for (std::size_t m : m_list) tau_s_.push_back(static_cast<double>(m) * tau0_s);
+  std::vector<std::pair<std::size_t, std::size_t>> pairs;
+  for (std::size_t i = 0; i < k_; ++i) {
+    for (std::size_t j = i; j < k_; ++j) pairs.emplace_back(i, j);
+  }
+  // The pairs are independent: split over threads (the sums do not depend on the split).
+  auto work = [&](std::size_t first, std::size_t stride) {
+    for (std::size_t q = first; q < pairs.size(); q += stride) {
+      const auto [i, j] = pairs[q];
+      CompositeKernel kernel = base;
+      kernel.mi = static_cast<double>(m_list[i]);
+      kernel.mj = static_cast<double>(m_list[j]);
+      kernel.ni = static_cast<double>(n_phase - 2 * m_list[i]);
+      kernel.nj = static_cast<double>(n_phase - 2 * m_list[j]);
+      const double ti = kernel.mi * tau0_s;
+      const double tj = kernel.mj * tau0_s;
+      const double scale = 2.0 / (4.0 * ti * ti * tj * tj * kernel.ni * kernel.nj);
+      const auto sums = pair_sum(kernel);
+      for (std::size_t p = 0; p < products; ++p) {
+        products_[(i * k_ + j) * products + p] = scale * sums[p];
+        products_[(j * k_ + i) * products + p] = scale * sums[p];
+      }
+    }
+  };
+  const unsigned workers = std::max(1u, std::min<unsigned>(threads == 0 ? std::thread::hardware_concurrency() : threads,
+                                                           static_cast<unsigned>(pairs.size())));
+  std::vector<std::thread> pool;
+  for (unsigned w = 1; w < workers; ++w) pool.emplace_back(work, w, workers);
+  work(0, workers);
+  for (auto& t : pool) t.join();
+}
+
+std::vector<double> GmwmCovarianceBasis::covariance(std::span<const double> theta,
+                                                    std::span<const double> ar1_variances) const {
+  if (theta.size() != static_cast<std::size_t>(kTermCount) || ar1_variances.size() + 4 != randoms_) {
+    throw InputError("wavelet-variance covariance: theta needs 5 entries and one variance per "
+                     "Gauss-Markov term");
+  }
+  const std::size_t products = randoms_ * (randoms_ + 1) / 2;
+  std::vector<double> cov(k_ * k_, 0.0);
+  const double theta_r = std::max(0.0, theta[static_cast<std::size_t>(kR)]);
+  std::array<double, CompositeKernel::kMaxRandom> t{};
+  std::array<double, CompositeKernel::kMaxProducts> coef{};
+  for (std::size_t e = 0; e < k_ * k_; ++e) {
+    const double tau_ij = std::sqrt(tau_s_[e / k_] * tau_s_[e % k_]);
+    for (std::size_t a = 0; a < 4; ++a) t[a] = std::max(0.0, theta[a]);
+    for (std::size_t g = 0; g + 4 < randoms_; ++g) t[4 + g] = std::max(0.0, ar1_variances[g]);
+    t[static_cast<std::size_t>(kK)] += 1.5 * theta_r * tau_ij;
+    std::size_t idx = 0;
+    for (std::size_t a = 0; a < randoms_; ++a) {
+      for (std::size_t b = a; b < randoms_; ++b) coef[idx++] = (a == b ? 1.0 : 2.0) * t[a] * t[b];
+    }
+    double v = 0.0;
+    for (std::size_t p = 0; p < products; ++p) v += coef[p] * products_[e * products + p];
+    cov[e] = v;
+  }
+  return cov;
 }
 
 }  // namespace imunoise::fit

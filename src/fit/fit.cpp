@@ -359,6 +359,72 @@ void try_automatic_terms(const Curve& curve, std::size_t n_phase, double tau0_s,
   result = std::move(trial);
 }
 
+/// method gmwm on the prepared curve: the GMWM fit, its power-law terms as the coefficients,
+/// the residuals at its dyadic taus (the other taus: used = false).
+FitResult fit_gmwm_curve(const std::vector<std::size_t>& m, const std::vector<double>& avar,
+                         const Curve& full_curve, const std::vector<std::size_t>& excluded_index,
+                         std::size_t n_phase, double tau0_s, const FitOptions& options, FitResult result) {
+  GmwmOptions go = options.gmwm;
+  go.level = options.level;
+  GmwmResult g = fit_gmwm(m, avar, n_phase, tau0_s, go);
+  FitSummary& summary = result.summary;
+  summary.points_used = g.scales.size();
+  summary.chi2 = g.j_statistic;
+  summary.dof = g.dof;
+  summary.chi2_dof = g.dof > 0 ? g.j_statistic / static_cast<double>(g.dof) : 0.0;
+  summary.iterations = g.iterations;
+  summary.termination = g.status == GmwmStatus::converged        ? Termination::converged
+                        : g.status == GmwmStatus::no_convergence ? Termination::no_convergence
+                                                                 : Termination::too_few_points;
+  summary.message = "gmwm " + g.model + ": " + g.message;
+  for (const auto& w : g.warnings) summary.warnings.push_back(w);
+  for (int j = 0; j < kTermCount; ++j) {
+    coefficient(result.coefficients, j).note = "not in the gmwm model " + g.model;
+  }
+  for (const auto& t : g.terms) {
+    int j = -1;
+    switch (t.kind) {
+      case GmwmTerm::Q: j = kQ; break;
+      case GmwmTerm::N: j = kN; break;
+      case GmwmTerm::B: j = kB; break;
+      case GmwmTerm::K: j = kK; break;
+      case GmwmTerm::R: j = kR; break;
+      default: break;
+    }
+    if (j < 0) continue;
+    coefficient(result.coefficients, j) = t.magnitude;
+    result.terms[j].fitted = true;
+    result.terms[j].theta = t.magnitude.value * t.magnitude.value;
+    result.terms[j].estimate = t.magnitude.value;
+  }
+  // Residuals at the fitted (dyadic) taus; every other tau of the curve is shown unused.
+  for (const auto& s : g.scales) {
+    TauResidual r;
+    r.tau_s = s.tau_s;
+    r.avar = 2.0 * s.wv;
+    r.avar_model = 2.0 * s.wv_model;
+    r.sd_model = 2.0 * s.wv_sd;
+    r.normalized = r.sd_model > 0.0 ? (r.avar - r.avar_model) / r.sd_model : 0.0;
+    result.residuals.push_back(r);
+  }
+  std::vector<std::size_t> unused = excluded_index;
+  for (std::size_t i = 0; i < full_curve.tau.size(); ++i) {
+    const bool fitted = std::any_of(g.scales.begin(), g.scales.end(), [&](const GmwmScale& s) {
+      return std::abs(s.tau_s - full_curve.tau[i]) <= 1e-9 * full_curve.tau[i];
+    });
+    if (!fitted && std::find(unused.begin(), unused.end(), i) == unused.end()) unused.push_back(i);
+  }
+  add_excluded_residuals(result, full_curve, unused);
+  const double n = result.coefficients.random_walk.value;
+  const double k = result.coefficients.rate_random_walk.value;
+  if (n > 0 && k > 0) {
+    result.tau_opt_s = std::sqrt(3.0) * n / k;
+    result.avar_min_eq2 = 2.0 * n * k / std::sqrt(3.0);
+  }
+  result.gmwm = std::move(g);
+  return result;
+}
+
 }  // namespace
 
 std::string method_name(Method method) {
@@ -366,6 +432,7 @@ std::string method_name(Method method) {
     case Method::wls: return "wls";
     case Method::ols: return "ols";
     case Method::slope: return "slope";
+    case Method::gmwm: return "gmwm";
   }
   return "?";
 }
@@ -374,7 +441,8 @@ Method parse_method(std::string_view text) {
   if (text == "wls") return Method::wls;
   if (text == "ols") return Method::ols;
   if (text == "slope") return Method::slope;
-  throw InputError("unknown fit method '" + std::string(text) + "'; use wls, ols or slope");
+  if (text == "gmwm") return Method::gmwm;
+  throw InputError("unknown fit method '" + std::string(text) + "'; use wls, ols, slope or gmwm");
 }
 
 const char* term_name(int term) {
@@ -428,8 +496,10 @@ bool FitOptions::IsValid(std::string* error) const {
     return fail("mismatch_test_alpha must be in (0, 1)");
   }
   if ((gauss_markov || sinusoid) && method != Method::wls) {
-    return fail("the Gauss-Markov and sinusoid terms are fitted by the wls method only");
+    return fail("the Gauss-Markov and sinusoid terms are fitted by the wls method only (gmwm: "
+                "list them in its terms, GmwmOptions)");
   }
+  if (method == Method::gmwm && !gmwm.IsValid(error)) return false;
   return true;
 }
 
@@ -551,6 +621,10 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
       kept.avar.assign(curve.avar.begin() + static_cast<std::ptrdiff_t>(first), curve.avar.end());
       curve = std::move(kept);
     }
+  }
+  if (options.method == Method::gmwm) {
+    return fit_gmwm_curve(curve.m, curve.avar, full_curve, excluded_index, n_phase, tau0_s, options,
+                          std::move(result));
   }
   // The curve before the interior-bend cut: the automatic optional terms are fitted on it.
   const Curve curve_with_bends = curve;

@@ -72,6 +72,72 @@ void add_extra_terms(const RecordInfo& record, const FitOptions& options, const 
   }
 }
 
+/// The "gmwm" section: the fitted model with every term (GM terms as a list by correlation
+/// time), the J test, WVIC, the candidates' table and the wavelet variances; record units.
+nlohmann::json gmwm_json(const RecordInfo& record, const GmwmResult& g) {
+  const double f = record.rate_unit.to_si;
+  const auto names = coefficient_units(record.unit_label);
+  auto with_boot = [&](nlohmann::json j, double lo, double hi, double to_unit) {
+    if (std::isfinite(lo) && std::isfinite(hi)) j["bootstrap_ci"] = {number(lo / to_unit), number(hi / to_unit)};
+    return j;
+  };
+  nlohmann::json terms = nlohmann::json::array();
+  nlohmann::json gm = nlohmann::json::array();
+  for (const auto& t : g.terms) {
+    nlohmann::json j;
+    switch (t.kind) {
+      case GmwmTerm::GM:
+        j["sigma"] = with_boot(coefficient_json(t.magnitude, f, record.unit_label), t.magnitude_boot_low,
+                               t.magnitude_boot_high, f);
+        j["correlation_time_s"] = with_boot(coefficient_json(t.shape, 1.0, "s"), t.shape_boot_low, t.shape_boot_high, 1.0);
+        gm.push_back(j);
+        break;
+      case GmwmTerm::SIN:
+        j["amplitude"] = with_boot(coefficient_json(t.magnitude, f, record.unit_label), t.magnitude_boot_low,
+                                   t.magnitude_boot_high, f);
+        j["frequency_hz"] = with_boot(coefficient_json(t.shape, 1.0, "Hz"), t.shape_boot_low, t.shape_boot_high, 1.0);
+        break;
+      default: {
+        const int idx = t.kind == GmwmTerm::Q ? kQ : t.kind == GmwmTerm::N ? kN : t.kind == GmwmTerm::B ? kB
+                        : t.kind == GmwmTerm::K ? kK : kR;
+        j = with_boot(coefficient_json(t.magnitude, f, names[static_cast<std::size_t>(idx)]), t.magnitude_boot_low,
+                      t.magnitude_boot_high, f);
+      }
+    }
+    j["term"] = gmwm_term_name(t.kind);
+    terms.push_back(std::move(j));
+  }
+  nlohmann::json candidates = nlohmann::json::array();
+  for (const auto& c : g.candidates) {
+    candidates.push_back({{"model", c.model}, {"parameters", c.parameters}, {"objective", number(c.objective)},
+                          {"j_statistic", number(c.j_statistic)},
+                          {"dof", c.dof}, {"j_p_value", number(c.j_p_value)}, {"penalty", number(c.penalty)},
+                          {"wvic", number(c.wvic)}, {"converged", c.converged}, {"selected", c.selected}});
+  }
+  nlohmann::json wv = nlohmann::json::array();
+  for (const auto& s : g.scales) {
+    wv.push_back({{"tau_s", s.tau_s}, {"wv", number(s.wv / (f * f))}, {"wv_model", number(s.wv_model / (f * f))},
+                  {"wv_sd", number(s.wv_sd / (f * f))}});
+  }
+  return {{"model", g.model},
+          {"status", gmwm_status_name(g.status)},
+          {"message", g.message},
+          {"terms", std::move(terms)},
+          {"GM", std::move(gm)},
+          {"objective", number(g.objective)},
+          {"j_statistic", number(g.j_statistic)},
+          {"dof", g.dof},
+          {"j_p_value", number(g.j_p_value)},
+          {"wvic", number(g.wvic)},
+          {"candidates", std::move(candidates)},
+          {"bootstrap", {{"replicates", g.bootstrap_replicates}, {"seed", g.seed}}},
+          {"wavelet_variance_unit", record.unit_label + "^2"},
+          {"wavelet_variance", std::move(wv)},
+          {"note", "Haar wavelet variance = overlapping Allan variance / 2 at the dyadic taus; GM terms are "
+                   "AR1 processes of the samples, ordered by correlation time; intervals: delta method on "
+                   "the log scale (bootstrap_ci: parametric bootstrap percentiles)"}};
+}
+
 }  // namespace
 
 void parse_terms(std::string_view list, FitOptions& options) {
@@ -158,7 +224,7 @@ nlohmann::json report_json(const RecordInfo& record, const FitOptions& options,
   }
   nlohmann::json excluded = nlohmann::json::array();
   for (const auto& e : s.excluded_taus) excluded.push_back({{"tau_s", e.tau_s}, {"reason", e.reason}});
-  return {
+  nlohmann::json doc = {
       {"unit", record.unit_label},
       {"method", method_name(options.method)},
       {"level", options.level},
@@ -185,6 +251,8 @@ nlohmann::json report_json(const RecordInfo& record, const FitOptions& options,
                        {"excluded_taus", std::move(excluded)},
                        {"warnings", s.warnings},
                        {"residuals", std::move(residuals)}}}};
+  if (r.gmwm) doc["gmwm"] = gmwm_json(record, *r.gmwm);
+  return doc;
 }
 
 }  // namespace imunoise::fit

@@ -47,20 +47,24 @@
 // is 0, identified = false, ci_low = 0 and ci_high holds the upper limit, with a note saying
 // why (not significant, clamped at zero, too few taus, negative ols coefficient, not fitted).
 #include <cstddef>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "imunoise/deviation.hpp"
 #include "imunoise/fit/extra_terms.hpp"
+#include "imunoise/fit/gmwm.hpp"
 #include "imunoise/noise_coefficients.hpp"
 
 namespace imunoise::fit {
 
-enum class Method { wls, ols, slope };
-/// "wls", "ols", "slope".
+/// gmwm: the Generalized Method of Wavelet Moments (gmwm.hpp) on the dyadic taus of the curve,
+/// with several Gauss-Markov terms and WVIC model selection (FitOptions::gmwm).
+enum class Method { wls, ols, slope, gmwm };
+/// "wls", "ols", "slope", "gmwm".
 std::string method_name(Method method);
-/// Parses "wls", "ols" or "slope"; InputError otherwise.
+/// Parses "wls", "ols", "slope" or "gmwm"; InputError otherwise.
 Method parse_method(std::string_view text);
 
 /// Indices of the five power-law terms in theta and in every per-term array; the optional
@@ -147,6 +151,10 @@ struct FitOptions {
   /// their difference as a fully correlated systematic error in the covariance.
   bool flicker_band_edge = true;
   double mismatch_test_alpha = 1e-3;
+  /// method gmwm: its terms (GM repeated, or automatic), bootstrap and seed. The curve is
+  /// prepared as for wls (tau range, sampling-chain cut); terms[] and gauss_markov/sinusoid
+  /// are not used.
+  GmwmOptions gmwm;
   /// Checks every field; writes why not into *error (may be null).
   bool IsValid(std::string* error) const;
 };
@@ -221,6 +229,10 @@ struct FitResult {
   /// The tests of the optional terms; their coefficients are in coefficients.gauss_markov /
   /// coefficients.sinusoid (set whenever the term was requested).
   ExtraTermsReport extras;
+  /// method gmwm: the whole GMWM result (every term, its GM terms by correlation time, the
+  /// candidates' table, the J test, the wavelet variances). The power-law terms are also in
+  /// coefficients; the GM terms only here (NoiseCoefficients holds one GM term).
+  std::optional<GmwmResult> gmwm;
 };
 
 /// Fits the noise model to an oadev curve (points from compute_deviation(oadev, ...), SI).

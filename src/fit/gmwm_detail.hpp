@@ -1,0 +1,84 @@
+#pragma once
+// Internals of the GMWM fit shared by gmwm.cpp (model, optimiser), gmwm_fit.cpp (starts,
+// weights, selection, intervals) and gmwm_bootstrap.cpp. Internal to the fit module.
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "imunoise/fit/gmwm.hpp"
+
+namespace imunoise::fit::detail {
+
+using Matrix = Eigen::MatrixXd;
+using Vector = Eigen::VectorXd;
+
+/// The dyadic part of the curve, SI Allan variance.
+struct GmwmCurve {
+  std::vector<std::size_t> m;
+  std::vector<double> tau_s;
+  std::vector<double> avar;
+  std::size_t n_phase = 0;
+  double tau0_s = 0.0;
+  unsigned threads = 1;  ///< for the covariance sums
+  bool full_weight = false;  ///< W = Sigma^-1 (true) or diag(Sigma)^-1 (GmwmOptions::full_weight)
+};
+
+/// Where each term's parameters sit in the parameter vector (log variance, then log T_c or
+/// log f0 for GM and SIN).
+struct Layout {
+  std::vector<GmwmTerm> terms;
+  std::vector<Eigen::Index> magnitude;
+  std::vector<Eigen::Index> shape;  // -1: none
+  Eigen::Index parameters = 0;
+  Layout() = default;
+  explicit Layout(std::vector<GmwmTerm> kinds);
+};
+
+struct Bounds {
+  Vector lo, hi;
+};
+
+struct LmResult {
+  Vector p;
+  double cost = 0.0;
+  int iterations = 0;
+  bool converged = false;
+};
+
+std::string model_name(const std::vector<GmwmTerm>& terms);
+/// Model Allan variance at every scale; *jacobian (may be null) gets d a / d p.
+Vector model_avar(const Layout& layout, const Vector& p, const GmwmCurve& c, Matrix* jacobian);
+/// Covariance of the estimates under the model p (GmwmCovarianceBasis).
+Matrix model_covariance(const Layout& layout, const Vector& p, const GmwmCurve& c);
+/// The square root Wh of the weight W = Wh' Wh: Sigma^-1 (full, Wh Sigma Wh' = I) or
+/// diag(Sigma)^-1 (c.full_weight false).
+Matrix whitener_of(const Matrix& sigma, const GmwmCurve& c);
+/// Non-negative least squares (Lawson-Hanson).
+Vector nnls_lh(const Matrix& a, const Vector& b);
+Bounds bounds_for(const Layout& layout, const GmwmCurve& c);
+/// Projected Levenberg-Marquardt on || whiten (a_hat - a(p)) ||^2 within bounds.
+LmResult levenberg_marquardt(const Layout& layout, const GmwmCurve& c, const Matrix& whiten,
+                             Vector p, const Bounds& bounds, int max_iterations);
+
+/// A fitted model with a given weight: the best of several starts.
+struct ModelFit {
+  Layout layout;
+  LmResult lm;
+  bool ok = false;
+};
+/// Multi-start fit of `layout` with the whitener `whiten` (starts: NNLS variances for T_c / f0
+/// sets from the curve's bumps and from grids a decade apart), warm start `warm` when given.
+ModelFit fit_model(const Layout& layout, const GmwmCurve& c, const Matrix& whiten,
+                   const Vector* warm = nullptr);
+
+/// Parametric bootstrap: `replicates` records simulated from the fitted model p (src/sim),
+/// each fitted with the weight `whiten` from p; returns one row of log parameters per
+/// converged replicate.
+std::vector<Vector> bootstrap_parameters(const Layout& layout, const Vector& p, const GmwmCurve& c,
+                                         const Matrix& whiten, int replicates, std::uint64_t seed,
+                                         unsigned threads);
+
+}  // namespace imunoise::fit::detail

@@ -1,0 +1,599 @@
+// GMWM: starting values, iterated weights, WVIC selection and intervals (gmwm.hpp).
+#include <algorithm>
+#include <cstdlib>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <Eigen/Dense>
+#include <boost/math/distributions/chi_squared.hpp>
+#include <boost/math/distributions/normal.hpp>
+#include <fmt/core.h>
+
+#include "imunoise/error.hpp"
+#include "imunoise/fit/fit.hpp"
+#include "imunoise/fit/gmwm.hpp"
+#include "gmwm_detail.hpp"
+#include "least_squares.hpp"
+
+namespace imunoise::fit {
+namespace detail {
+namespace {
+
+constexpr int kLmIterations = 200;
+constexpr std::size_t kStartsKept = 3;
+constexpr double kGmPeakRatio = 1.89262;  // tau of the Gauss-Markov Allan peak / T_c
+
+/// Every sorted choice of `count` values from `values`.
+void choose(const std::vector<double>& values, std::size_t count, std::size_t from,
+            std::vector<double>& current, std::vector<std::vector<double>>& out) {
+  if (current.size() == count) {
+    out.push_back(current);
+    return;
+  }
+  for (std::size_t i = from; i < values.size(); ++i) {
+    if (values.size() - i < count - current.size()) break;
+    current.push_back(values[i]);
+    choose(values, count, i + 1, current, out);
+    current.pop_back();
+  }
+}
+
+/// Taus of the curve's concave bends (local bumps): log-log slope of the Allan variance falling.
+std::vector<double> bump_taus(const GmwmCurve& c) {
+  std::vector<double> out;
+  for (std::size_t i = 1; i + 1 < c.tau_s.size(); ++i) {
+    const double s1 = std::log(c.avar[i] / c.avar[i - 1]) / std::log(c.tau_s[i] / c.tau_s[i - 1]);
+    const double s2 = std::log(c.avar[i + 1] / c.avar[i]) / std::log(c.tau_s[i + 1] / c.tau_s[i]);
+    if (s2 < s1 - 0.1) out.push_back(c.tau_s[i]);
+  }
+  return out;
+}
+
+}  // namespace
+
+ModelFit fit_model(const Layout& layout, const GmwmCurve& c, const Matrix& whiten, const Vector* warm) {
+  const Bounds bounds = bounds_for(layout, c);
+  const auto k = static_cast<Eigen::Index>(c.tau_s.size());
+  const Vector y = Eigen::Map<const Vector>(c.avar.data(), k);
+  const Vector b = whiten * y;
+  std::vector<std::size_t> gm, sin;
+  for (std::size_t t = 0; t < layout.terms.size(); ++t) {
+    if (layout.terms[t] == GmwmTerm::GM) gm.push_back(t);
+    if (layout.terms[t] == GmwmTerm::SIN) sin.push_back(t);
+  }
+  // Shape candidates: T_c on two grids a decade apart (offset by half a decade) over the
+  // curve's span, and the bumps; f0 from the bumps and a decade grid.
+  const double tc_lo = c.tau_s.front() / kGmPeakRatio / 2.0, tc_hi = c.tau_s.back() / kGmPeakRatio;
+  std::vector<std::vector<double>> tc_grids(3);
+  for (int half = 0; half < 2; ++half) {
+    for (double e = std::floor(std::log10(tc_lo)) + 0.5 * half; e <= std::log10(tc_hi) + 1e-9; e += 1.0) {
+      const double t = std::pow(10.0, e);
+      if (t >= tc_lo) tc_grids[static_cast<std::size_t>(half)].push_back(t);
+    }
+  }
+  for (double tau : bump_taus(c)) tc_grids[2].push_back(tau / kGmPeakRatio);
+  std::vector<std::vector<double>> tc_sets;
+  if (gm.empty()) {
+    tc_sets.push_back({});
+  } else {
+    for (auto& grid : tc_grids) {
+      // The bump list is completed by the decade grid so that every GM term has a start.
+      std::vector<double> values = grid;
+      if (&grid == &tc_grids[2]) {
+        for (double t : tc_grids[0]) {
+          if (std::none_of(values.begin(), values.end(), [&](double v) { return std::abs(std::log10(v / t)) < 0.5; })) {
+            values.push_back(t);
+          }
+        }
+        std::sort(values.begin(), values.end());
+      }
+      if (values.size() < gm.size()) {
+        // Too few grid points for the GM terms: spread them evenly in log over the span.
+        values.clear();
+        for (std::size_t g = 0; g < gm.size(); ++g) {
+          values.push_back(tc_lo * std::pow(tc_hi / tc_lo, (static_cast<double>(g) + 0.5) / static_cast<double>(gm.size())));
+        }
+      }
+      std::vector<double> current;
+      choose(values, gm.size(), 0, current, tc_sets);
+    }
+  }
+  std::vector<double> f_values{0.0};
+  if (!sin.empty()) {
+    f_values.clear();
+    for (double tau : bump_taus(c)) f_values.push_back(0.371 / tau);
+    for (double tau = c.tau_s.front(); tau <= c.tau_s.back(); tau *= 8.0) f_values.push_back(0.371 / tau);
+  }
+  struct Start {
+    double cost;
+    Vector p;
+  };
+  std::vector<Start> starts;
+  Matrix g(k, static_cast<Eigen::Index>(layout.terms.size()));
+  for (const auto& tcs : tc_sets) {
+    for (double f0 : f_values) {
+      Vector p(layout.parameters);
+      for (std::size_t t = 0, gi = 0; t < layout.terms.size(); ++t) {
+        double shape = 0.0;
+        if (layout.terms[t] == GmwmTerm::GM) shape = tcs[gi++];
+        if (layout.terms[t] == GmwmTerm::SIN) shape = f0;
+        if (layout.shape[t] >= 0) p(layout.shape[t]) = std::clamp(std::log(shape), bounds.lo(layout.shape[t]), bounds.hi(layout.shape[t]));
+        Vector unit = Vector::Zero(layout.parameters);
+        unit = p;
+        for (std::size_t u = 0; u < layout.terms.size(); ++u) unit(layout.magnitude[u]) = u == t ? 0.0 : -700.0;
+        g.col(static_cast<Eigen::Index>(t)) = model_avar(layout, unit, c, nullptr);
+      }
+      const Vector x = nnls_lh(whiten * g, b);
+      const double cost = (whiten * g * x - b).squaredNorm();
+      for (std::size_t t = 0; t < layout.terms.size(); ++t) {
+        const Eigen::Index j = layout.magnitude[t];
+        const double floor = bounds.hi(j) - 2.0 - 12.0;  // 6e-6 of the upper bound
+        p(j) = std::clamp(x(static_cast<Eigen::Index>(t)) > 0.0 ? std::log(x(static_cast<Eigen::Index>(t))) : floor,
+                          bounds.lo(j), bounds.hi(j));
+      }
+      starts.push_back({cost, p});
+    }
+  }
+  std::sort(starts.begin(), starts.end(), [](const Start& a, const Start& b2) { return a.cost < b2.cost; });
+  ModelFit best;
+  best.layout = layout;
+  best.lm.cost = std::numeric_limits<double>::infinity();
+  std::vector<Vector> tried;
+  auto run = [&](const Vector& p0) {
+    LmResult r = levenberg_marquardt(layout, c, whiten, p0, bounds, kLmIterations);
+    if (std::isfinite(r.cost) && r.cost < best.lm.cost) {
+      best.lm = std::move(r);
+      best.ok = true;
+    }
+  };
+  if (warm != nullptr) run(*warm);
+  std::size_t used = 0;
+  for (const auto& s : starts) {
+    if (used >= kStartsKept) break;
+    // Skip starts that are the same point as one already run.
+    if (std::any_of(tried.begin(), tried.end(), [&](const Vector& t) { return (t - s.p).cwiseAbs().maxCoeff() < 0.3; })) continue;
+    tried.push_back(s.p);
+    run(s.p);
+    ++used;
+  }
+  return best;
+}
+
+namespace {
+
+double chi2_upper(double x, std::size_t dof) {
+  if (dof == 0) return std::numeric_limits<double>::quiet_NaN();
+  const boost::math::chi_squared_distribution<double> d(static_cast<double>(dof));
+  return boost::math::cdf(boost::math::complement(d, std::max(0.0, x)));
+}
+
+/// Parameters stuck at their lower bound (the objective does not want the term).
+std::vector<bool> at_floor(const Layout& layout, const Vector& p, const Bounds& b) {
+  std::vector<bool> out(static_cast<std::size_t>(layout.parameters), false);
+  for (std::size_t t = 0; t < layout.terms.size(); ++t) {
+    const Eigen::Index j = layout.magnitude[t];
+    if (p(j) < b.lo(j) + 6.0) {
+      out[static_cast<std::size_t>(j)] = true;
+      if (layout.shape[t] >= 0) out[static_cast<std::size_t>(layout.shape[t])] = true;
+    }
+  }
+  return out;
+}
+
+/// The generalised J statistic and its degrees of freedom (gmwm.hpp): e' C^+ e with C the
+/// covariance of the whitened residual e under the model, rank k - p.
+std::pair<double, std::size_t> j_test(const Vector& e, const Matrix& dw_all, const Matrix& s,
+                                      const std::vector<bool>& fixed) {
+  std::vector<Eigen::Index> free;
+  for (Eigen::Index j = 0; j < dw_all.cols(); ++j) {
+    if (!fixed[static_cast<std::size_t>(j)]) free.push_back(j);
+  }
+  const Eigen::Index k = e.size();
+  Matrix p = Matrix::Zero(k, k);
+  if (!free.empty()) {
+    Matrix dw(k, static_cast<Eigen::Index>(free.size()));
+    for (std::size_t f = 0; f < free.size(); ++f) dw.col(static_cast<Eigen::Index>(f)) = dw_all.col(free[f]);
+    p = dw * (dw.transpose() * dw).completeOrthogonalDecomposition().pseudoInverse() * dw.transpose();
+  }
+  const Matrix q = Matrix::Identity(k, k) - p;
+  const Matrix cr = q * s * q.transpose();
+  const Eigen::SelfAdjointEigenSolver<Matrix> es(0.5 * (cr + cr.transpose()));
+  const double top = es.eigenvalues().maxCoeff();
+  // The projector removes p directions exactly: keep the k - p largest eigenvalues.
+  const auto rank = static_cast<Eigen::Index>(std::max<std::ptrdiff_t>(0, k - static_cast<Eigen::Index>(free.size())));
+  double j = 0.0;
+  for (Eigen::Index i = k - rank; i < k; ++i) {
+    const double lambda = es.eigenvalues()(i);
+    if (!(lambda > 1e-14 * top)) continue;
+    const double proj = es.eigenvectors().col(i).dot(e);
+    j += proj * proj / lambda;
+  }
+  return {j, static_cast<std::size_t>(rank)};
+}
+
+/// Sandwich covariance of the log parameters: A S A' with A = (Dw' Dw)^-1 Dw' (whitened), on
+/// the free parameters (others: infinite variance).
+Matrix log_covariance(const Matrix& dw, const Matrix& s, const std::vector<bool>& fixed) {
+  const Eigen::Index n = dw.cols();
+  std::vector<Eigen::Index> free;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    if (!fixed[static_cast<std::size_t>(j)]) free.push_back(j);
+  }
+  Matrix cov = Matrix::Constant(n, n, 0.0);
+  for (Eigen::Index j = 0; j < n; ++j) cov(j, j) = std::numeric_limits<double>::infinity();
+  if (free.empty()) return cov;
+  Matrix sub(dw.rows(), static_cast<Eigen::Index>(free.size()));
+  for (std::size_t f = 0; f < free.size(); ++f) sub.col(static_cast<Eigen::Index>(f)) = dw.col(free[f]);
+  const Matrix info = sub.transpose() * sub;
+  const Eigen::CompleteOrthogonalDecomposition<Matrix> cod(info);
+  const Matrix a_mat = cod.pseudoInverse() * sub.transpose();
+  const Matrix inv = a_mat * s * a_mat.transpose();
+  for (std::size_t a = 0; a < free.size(); ++a) {
+    for (std::size_t b = 0; b < free.size(); ++b) {
+      cov(free[a], free[b]) = inv(static_cast<Eigen::Index>(a), static_cast<Eigen::Index>(b));
+    }
+  }
+  // A direction the data do not determine (rank-deficient information) gets infinite variance.
+  if (cod.rank() < static_cast<Eigen::Index>(free.size())) {
+    const Eigen::SelfAdjointEigenSolver<Matrix> es(info);
+    for (Eigen::Index e = 0; e < es.eigenvalues().size(); ++e) {
+      if (es.eigenvalues()(e) <= 1e-12 * es.eigenvalues().maxCoeff()) {
+        for (std::size_t a = 0; a < free.size(); ++a) {
+          if (std::abs(es.eigenvectors()(static_cast<Eigen::Index>(a), e)) > 0.1) {
+            cov(free[a], free[a]) = std::numeric_limits<double>::infinity();
+          }
+        }
+      }
+    }
+  }
+  return cov;
+}
+
+/// 2 tr(W Sigma_c W D (D' W D)^+ D'), with W = Wh' Wh.
+double wvic_penalty(const Matrix& wh, const Matrix& sigma_c, const Matrix& d, const std::vector<bool>& fixed) {
+  std::vector<Eigen::Index> free;
+  for (Eigen::Index j = 0; j < d.cols(); ++j) {
+    if (!fixed[static_cast<std::size_t>(j)]) free.push_back(j);
+  }
+  if (free.empty()) return 0.0;
+  Matrix dw(wh.rows(), static_cast<Eigen::Index>(free.size()));
+  for (std::size_t f = 0; f < free.size(); ++f) dw.col(static_cast<Eigen::Index>(f)) = wh * d.col(free[f]);
+  const Matrix info = dw.transpose() * dw;
+  const Matrix inv = info.completeOrthogonalDecomposition().pseudoInverse();
+  // tr(Wh Sigma_c Wh' * Dw inv Dw') (cyclic: W Sigma W D inv D' = Wh' [Wh Sigma Wh'] Dw inv Dw' Wh).
+  const Matrix s = wh * sigma_c * wh.transpose();
+  return 2.0 * (s * dw * inv * dw.transpose()).trace();
+}
+
+struct Weighted {
+  ModelFit fit;
+  Matrix whiten;
+  Matrix sigma;
+  int weight_passes = 0;
+};
+
+/// Fit with W iterated at the fitted model: W0 given, then `passes` recomputations.
+Weighted iterate_weights(const Layout& layout, const GmwmCurve& c, const Matrix& whiten0, int passes) {
+  Weighted w;
+  w.fit = fit_model(layout, c, whiten0);
+  w.whiten = whiten0;
+  for (int pass = 0; pass < passes && w.fit.ok; ++pass) {
+    w.sigma = model_covariance(layout, w.fit.lm.p, c);
+    w.whiten = whitener_of(w.sigma, c);
+    const Vector warm = w.fit.lm.p;
+    // Later passes: from the previous optimum and from the starts (the weight changed).
+    ModelFit next = pass == 0 ? fit_model(layout, c, w.whiten, &warm) : fit_model(layout, c, w.whiten, &warm);
+    const double move = next.ok ? (next.lm.p - warm).cwiseAbs().maxCoeff() : 0.0;
+    if (next.ok) w.fit = std::move(next);
+    ++w.weight_passes;
+    if (move < 1e-4) break;
+  }
+  if (w.fit.ok) {
+    // The final covariance at the final parameters (J with W at the fitted model).
+    w.sigma = model_covariance(layout, w.fit.lm.p, c);
+    w.whiten = whitener_of(w.sigma, c);
+    const Vector y = Eigen::Map<const Vector>(c.avar.data(), static_cast<Eigen::Index>(c.avar.size()));
+    w.fit.lm.cost = (w.whiten * (y - model_avar(layout, w.fit.lm.p, c, nullptr))).squaredNorm();
+  }
+  return w;
+}
+
+/// The first weight: the covariance under a power-law model (Q, N, B, K, R by NNLS with the
+/// curve's own rough sampling variance 2 a^2 m / (n_phase - 2m)).
+Matrix initial_whitener(const GmwmCurve& c) {
+  const auto k = static_cast<Eigen::Index>(c.tau_s.size());
+  Matrix g(k, kTermCount);
+  Vector y(k), w(k);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    const auto ii = static_cast<std::size_t>(i);
+    g(i, kQ) = gmwm_avar_quantization(c.tau_s[ii]);
+    g(i, kN) = gmwm_avar_white(c.tau_s[ii]);
+    g(i, kB) = gmwm_avar_flicker(c.tau_s[ii]);
+    g(i, kK) = gmwm_avar_random_walk(c.tau_s[ii]);
+    g(i, kR) = gmwm_avar_ramp(c.tau_s[ii]);
+    y(i) = c.avar[ii];
+    const double edf = std::max(1.0, static_cast<double>(c.n_phase - 2 * c.m[ii]) / static_cast<double>(c.m[ii]));
+    w(i) = 1.0 / (c.avar[ii] * std::sqrt(2.0 / edf));
+  }
+  const Vector theta = nnls_lh(w.asDiagonal() * g, w.asDiagonal() * y);
+  double t5[kTermCount];
+  for (int j = 0; j < kTermCount; ++j) t5[j] = theta(j);
+  const GmwmCovarianceBasis basis(c.m, c.n_phase, c.tau0_s, {}, theta(kB) > 0.0, c.threads);
+  return whitener_of(to_matrix(basis.covariance(t5, {}), c.m.size()), c);
+}
+
+std::vector<std::vector<GmwmTerm>> auto_candidates(int max_gm) {
+  std::vector<std::vector<GmwmTerm>> out;
+  for (int g = 0; g <= max_gm; ++g) {
+    for (int with_k = 0; with_k < 2; ++with_k) {
+      std::vector<GmwmTerm> t{GmwmTerm::N};
+      if (with_k) t.push_back(GmwmTerm::K);
+      for (int i = 0; i < g; ++i) t.push_back(GmwmTerm::GM);
+      out.push_back(t);
+    }
+  }
+  return out;
+}
+
+}  // namespace
+}  // namespace detail
+
+namespace {
+double detail_normal_quantile(double level) {
+  const boost::math::normal_distribution<double> normal;
+  return boost::math::quantile(normal, 0.5 + 0.5 * level);
+}
+}  // namespace
+
+GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar, std::size_t n_phase,
+                    double tau0_s, const GmwmOptions& options) {
+  using namespace detail;
+  std::string why;
+  if (!options.IsValid(&why)) throw InputError(why);
+  if (m.size() != avar.size()) throw InputError("gmwm: m and avar differ in length");
+  if (!(tau0_s > 0.0)) throw InputError("gmwm: tau0 must be positive");
+  GmwmCurve c;
+  c.n_phase = n_phase;
+  c.tau0_s = tau0_s;
+  c.threads = options.threads;
+  c.full_weight = options.full_weight;
+  for (std::size_t i = 0; i < m.size(); ++i) {
+    const bool dyadic = m[i] > 0 && (m[i] & (m[i] - 1)) == 0;
+    if (dyadic && avar[i] > 0.0 && std::isfinite(avar[i]) && n_phase > 2 * m[i]) {
+      c.m.push_back(m[i]);
+      c.tau_s.push_back(static_cast<double>(m[i]) * tau0_s);
+      c.avar.push_back(avar[i]);
+    }
+  }
+  GmwmResult result;
+  result.seed = options.seed;
+  const auto k = c.m.size();
+  if (k < m.size()) {
+    result.warnings.push_back(fmt::format(
+        "gmwm uses the dyadic scales (m = 2^j) of the curve: {} of its {} taus", k, m.size()));
+  }
+
+  // The candidates (or the one requested model) that the curve can carry.
+  std::vector<std::vector<GmwmTerm>> candidates;
+  if (options.automatic) {
+    for (auto& t : auto_candidates(options.max_gm)) {
+      if (static_cast<std::size_t>(Layout(t).parameters) < k) candidates.push_back(t);
+    }
+    if (candidates.empty()) {
+      result.status = GmwmStatus::too_few_scales;
+      result.message = fmt::format("{} dyadic scales are too few for any candidate model", k);
+      return result;
+    }
+  } else {
+    std::vector<GmwmTerm> terms = options.terms;
+    const Layout layout(terms);
+    if (static_cast<std::size_t>(layout.parameters) >= k) {
+      throw InputError(fmt::format(
+          "gmwm: the model {} has {} parameters but the curve has only {} dyadic scales (it needs "
+          "at least {}); use fewer terms, an octave tau grid or a longer record",
+          model_name(terms), layout.parameters, k, layout.parameters + 1));
+    }
+    candidates.push_back(terms);
+  }
+
+  const Matrix w0 = initial_whitener(c);
+  std::vector<GmwmTerm> chosen = candidates.front();
+  if (candidates.size() > 1) {
+    // One weight for every candidate: W at the fitted largest candidate (the most flexible
+    // description of the curve), so the objectives are comparable.
+    std::size_t largest = 0;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      if (Layout(candidates[i]).parameters > Layout(candidates[largest]).parameters) largest = i;
+    }
+    const Weighted ref = iterate_weights(Layout(candidates[largest]), c, w0, 1);
+    const Matrix wh = ref.fit.ok ? ref.whiten : w0;
+    double best = std::numeric_limits<double>::infinity();
+    std::size_t best_index = 0;
+    for (std::size_t i = 0; i < candidates.size(); ++i) {
+      const Layout layout(candidates[i]);
+      const ModelFit f = fit_model(layout, c, wh);
+      GmwmCandidate cand;
+      cand.model = model_name(candidates[i]);
+      cand.parameters = static_cast<int>(layout.parameters);
+      cand.dof = k - static_cast<std::size_t>(layout.parameters);
+      if (f.ok) {
+        Matrix d;
+        model_avar(layout, f.lm.p, c, &d);
+        const auto fixed = at_floor(layout, f.lm.p, bounds_for(layout, c));
+        // Cov(a_hat, a(theta_hat)) under the distribution of the reference model (the most
+        // flexible description of the curve): with W = Sigma_ref^-1 the trace is the number of
+        // parameters the data determine (a term at its floor or a rank-deficient direction
+        // counts 0), docs/fit.md.
+        const Matrix sigma_ref = ref.fit.ok ? ref.sigma : Matrix(wh.inverse() * wh.inverse().transpose());
+        const Vector e = wh * (Eigen::Map<const Vector>(c.avar.data(), static_cast<Eigen::Index>(k)) -
+                               model_avar(layout, f.lm.p, c, nullptr));
+        const auto [j, dof] = j_test(e, wh * d, wh * sigma_ref * wh.transpose(), fixed);
+        cand.converged = f.lm.converged;
+        cand.objective = f.lm.cost;
+        cand.j_statistic = j;
+        cand.dof = dof;
+        cand.j_p_value = chi2_upper(j, dof);
+        cand.penalty = wvic_penalty(wh, sigma_ref, d, fixed);
+        cand.wvic = cand.objective + cand.penalty;
+        // Strictly better only: a larger candidate whose extra terms ran to their floor ties
+        // with the smaller one it reduces to, and the smaller one is kept.
+        if (!std::isfinite(best) || cand.wvic < best - 1e-6 * std::abs(best)) {
+          best = cand.wvic;
+          best_index = i;
+        }
+      } else {
+        cand.wvic = std::numeric_limits<double>::infinity();
+      }
+      result.candidates.push_back(cand);
+    }
+    result.candidates[best_index].selected = true;
+    chosen = candidates[best_index];
+  }
+
+  const Layout layout(chosen);
+  const Weighted fin = iterate_weights(layout, c, w0, options.weight_iterations);
+  result.model = model_name(chosen);
+  if (!fin.fit.ok) {
+    result.status = GmwmStatus::no_convergence;
+    result.message = "the optimiser found no finite objective from any start";
+    return result;
+  }
+  const LmResult& lm = fin.fit.lm;
+  result.iterations = lm.iterations;
+  result.status = lm.converged ? GmwmStatus::converged : GmwmStatus::no_convergence;
+  result.message = lm.converged ? fmt::format("converged after {} iterations ({} weight passes)", lm.iterations,
+                                              fin.weight_passes)
+                                : fmt::format("no convergence in {} iterations: last iterate", lm.iterations);
+  Matrix d;
+  const Vector model = model_avar(layout, lm.p, c, &d);
+  const Bounds bounds = bounds_for(layout, c);
+  const auto fixed = at_floor(layout, lm.p, bounds);
+  const Matrix s_white = fin.whiten * fin.sigma * fin.whiten.transpose();
+  {
+    const Vector e = fin.whiten * (Eigen::Map<const Vector>(c.avar.data(), static_cast<Eigen::Index>(k)) - model);
+    const auto [j, dof] = j_test(e, fin.whiten * d, s_white, fixed);
+    result.j_statistic = j;
+    result.dof = dof;
+    result.j_p_value = chi2_upper(j, dof);
+  }
+  result.objective = lm.cost;
+  result.wvic = lm.cost + wvic_penalty(fin.whiten, fin.sigma, d, fixed);
+  if (!options.automatic) {
+    GmwmCandidate cand;
+    cand.model = result.model;
+    cand.parameters = static_cast<int>(layout.parameters);
+    cand.dof = result.dof;
+    cand.j_statistic = result.j_statistic;
+    cand.j_p_value = result.j_p_value;
+    cand.objective = result.objective;
+    cand.wvic = result.wvic;
+    cand.penalty = result.wvic - result.objective;
+    cand.converged = lm.converged;
+    cand.selected = true;
+    result.candidates.push_back(cand);
+  }
+  for (std::size_t i = 0; i < k; ++i) {
+    result.scales.push_back({c.tau_s[i], 0.5 * c.avar[i], 0.5 * model(static_cast<Eigen::Index>(i)),
+                             0.5 * std::sqrt(fin.sigma(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i)))});
+  }
+
+  // Intervals: delta method on the log scale, W at the fitted model.
+  const Matrix cov = log_covariance(fin.whiten * d, s_white, fixed);
+  std::vector<Vector> boot;
+  if (options.bootstrap > 0) {
+    boot = bootstrap_parameters(layout, lm.p, c, fin.whiten, options.bootstrap, options.seed, options.threads);
+    result.bootstrap_replicates = static_cast<int>(boot.size());
+  }
+  const double zq = detail_normal_quantile(options.level);
+  auto percentile = [&](Eigen::Index j, double q) {
+    std::vector<double> v;
+    for (const auto& b : boot) v.push_back(b(j));
+    if (v.empty()) return std::numeric_limits<double>::quiet_NaN();
+    std::sort(v.begin(), v.end());
+    const double pos = q * static_cast<double>(v.size() - 1);
+    const auto lo = static_cast<std::size_t>(std::floor(pos));
+    const std::size_t hi = std::min(lo + 1, v.size() - 1);
+    return v[lo] + (pos - static_cast<double>(lo)) * (v[hi] - v[lo]);
+  };
+  const double span_lo = tau0_s, span_hi = static_cast<double>(n_phase - 1) * tau0_s;
+  for (std::size_t t = 0; t < layout.terms.size(); ++t) {
+    GmwmTermEstimate e;
+    e.kind = layout.terms[t];
+    const Eigen::Index j = layout.magnitude[t];
+    const double sd = std::sqrt(cov(j, j));
+    const double mag = std::exp(0.5 * lm.p(j));
+    const bool floor = fixed[static_cast<std::size_t>(j)];
+    e.magnitude.value = mag;
+    e.magnitude.ci_low = std::isfinite(sd) ? std::exp(0.5 * (lm.p(j) - zq * sd)) : 0.0;
+    e.magnitude.ci_high = std::isfinite(sd) ? std::exp(0.5 * (lm.p(j) + zq * sd))
+                                            : std::exp(0.5 * bounds.hi(j));
+    e.magnitude.identified = !floor && sd < 1.0 / zq;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    e.shape.ci_low = e.shape.ci_high = nan;
+    e.magnitude_boot_low = boot.empty() ? nan : std::exp(0.5 * percentile(j, 0.5 - 0.5 * options.level));
+    e.magnitude_boot_high = boot.empty() ? nan : std::exp(0.5 * percentile(j, 0.5 + 0.5 * options.level));
+    e.shape_boot_low = e.shape_boot_high = nan;
+    if (layout.shape[t] >= 0) {
+      const Eigen::Index s = layout.shape[t];
+      const double ssd = std::sqrt(cov(s, s));
+      e.shape.value = std::exp(lm.p(s));
+      e.shape.ci_low = std::isfinite(ssd) ? std::exp(lm.p(s) - zq * ssd) : 0.0;
+      e.shape.ci_high = std::isfinite(ssd) ? std::exp(lm.p(s) + zq * ssd) : std::numeric_limits<double>::infinity();
+      e.shape.identified = e.magnitude.identified && std::isfinite(ssd);
+      if (!boot.empty()) {
+        e.shape_boot_low = std::exp(percentile(s, 0.5 - 0.5 * options.level));
+        e.shape_boot_high = std::exp(percentile(s, 0.5 + 0.5 * options.level));
+      }
+      if (e.kind == GmwmTerm::GM && e.shape.identified &&
+          (e.shape.ci_low < span_lo || e.shape.ci_high > span_hi)) {
+        e.shape.identified = false;
+        e.magnitude.identified = false;
+        e.shape.note = e.magnitude.note = fmt::format(
+            "correlation time {:.4g} s, its interval [{:.4g}, {:.4g}] s reaches outside the record's "
+            "span [{:g}, {:g}] s: a Gauss-Markov term that white noise or a random walk describes",
+            e.shape.value, e.shape.ci_low, e.shape.ci_high, span_lo, span_hi);
+      }
+    }
+    if (!e.magnitude.identified && e.magnitude.note.empty()) {
+      e.magnitude.note = floor ? fmt::format("not needed by the curve: its variance ran to the floor (estimate {:.4g})", mag)
+                               : fmt::format("not significant: the {:g} % interval of its variance on the linear "
+                                             "scale includes zero (estimate {:.4g}, log-sd {:.3g})",
+                                             100.0 * options.level, mag, sd);
+      if (layout.shape[t] >= 0) {
+        e.shape.identified = false;
+        if (e.shape.note.empty()) e.shape.note = e.magnitude.note;
+      }
+    }
+    if (!e.magnitude.identified) {
+      // The convention of every fit: a term not identified has value 0 and an upper limit.
+      e.magnitude.ci_low = 0.0;
+      e.magnitude.value = 0.0;
+      if (!std::isfinite(e.magnitude.ci_high)) e.magnitude.ci_high = std::exp(0.5 * bounds.hi(j));
+    }
+    result.terms.push_back(e);
+  }
+  // GM terms ordered by correlation time (the other terms keep their places).
+  std::vector<std::size_t> gm_pos;
+  for (std::size_t t = 0; t < result.terms.size(); ++t) {
+    if (result.terms[t].kind == GmwmTerm::GM) gm_pos.push_back(t);
+  }
+  std::vector<GmwmTermEstimate> gms;
+  for (std::size_t p : gm_pos) gms.push_back(result.terms[p]);
+  std::sort(gms.begin(), gms.end(), [](const GmwmTermEstimate& a, const GmwmTermEstimate& b) {
+    return a.shape.value < b.shape.value;
+  });
+  for (std::size_t i = 0; i < gm_pos.size(); ++i) result.terms[gm_pos[i]] = gms[i];
+  if (result.j_p_value < 1e-3) {
+    result.warnings.push_back(fmt::format(
+        "gmwm: the J test rejects the model {} (J = {:.1f} on {} dof, p = {:.2g}): the curve is not "
+        "described to within its sampling noise",
+        result.model, result.j_statistic, result.dof, result.j_p_value));
+  }
+  return result;
+}
+
+}  // namespace imunoise::fit
