@@ -704,7 +704,7 @@ class TextParser {
       }
       if (consumed_) consumed_(end);
     };
-    const unsigned threads = detail::resolve_threads(options_.threads);
+    const unsigned threads = imunoise::detail::resolve_threads(options_.threads);
     if (threads > 1 && size > chunk_bytes) {
       // Threads start once per read, not per block, and wait between blocks.
       if (!pool_) pool_ = std::make_unique<RowPool>(threads - 1);

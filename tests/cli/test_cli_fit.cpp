@@ -155,7 +155,7 @@ TEST(CliFit, BadInputGivesClearMessages) {
 
   const auto m = run_cli({"fit", dir.write("x.txt", zeros), "--rate", "100", "--method", "lsq"});
   EXPECT_EQ(m.exit_code, 1);
-  EXPECT_NE(m.err.find("wls, ols or slope"), std::string::npos) << m.err;
+  EXPECT_NE(m.err.find("wls, ols, slope or gmwm"), std::string::npos) << m.err;
   const auto t = run_cli({"fit", dir.file("x.txt"), "--rate", "100", "--terms", "N,X"});
   EXPECT_EQ(t.exit_code, 1);
   EXPECT_NE(t.err.find("unknown term"), std::string::npos) << t.err;
