@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "imunoise/fit/fit.hpp"
+#include "imunoise/load/record.hpp"
 #include "imunoise/redundant/geometry.hpp"
 #include "imunoise/redundant/in_motion.hpp"
 #include "imunoise/redundant/unit_simulation.hpp"
@@ -49,14 +50,8 @@ const std::vector<std::vector<double>>& unit_records(const std::string& geometry
 std::vector<Record> records_of(const std::vector<std::vector<double>>& rates) {
   std::vector<Record> out;
   for (std::size_t i = 0; i < rates.size(); ++i) {
-    Record r;
-    r.name = r.source = "gyro" + std::to_string(i + 1);
-    r.rate_hz = kRate;
-    r.n_samples = rates[i].size();
-    r.rate_unit = Unit{"rad/s", Quantity::angular_rate, 1.0};
-    r.unit_given = true;
-    r.rate_si = rates[i];
-    out.push_back(std::move(r));
+    out.push_back(rate_record("gyro" + std::to_string(i + 1), rates[i], kRate,
+                              Unit{"rad/s", Quantity::angular_rate, 1.0}));
   }
   return out;
 }

@@ -171,14 +171,7 @@ py::object in_motion(const py::object& records, const std::string& geometry, dou
   } else {
     auto si = records_si(records, unit);
     for (std::size_t i = 0; i < si.size(); ++i) {
-      Record r;
-      r.name = r.source = "records[" + std::to_string(i) + "]";
-      r.rate_hz = rate;
-      r.n_samples = si[i].size();
-      r.rate_unit = unit;
-      r.unit_given = !units.empty();
-      r.rate_si = std::move(si[i]);
-      recs.push_back(std::move(r));
+      recs.push_back(rate_record("records[" + std::to_string(i) + "]", std::move(si[i]), rate, unit, !units.empty()));
     }
     if (!specific_force.is_none()) {
       auto f = records_si(specific_force, Unit{"m/s^2", Quantity::acceleration, 1.0});

@@ -2,6 +2,17 @@
 
 namespace imunoise {
 
+Record rate_record(std::string name, std::vector<double> rate_si, double rate_hz, Unit unit, bool unit_given) {
+  Record r;
+  r.name = r.source = std::move(name);
+  r.rate_hz = rate_hz;
+  r.n_samples = rate_si.size();
+  r.rate_unit = std::move(unit);
+  r.unit_given = unit_given;
+  r.rate_si = std::move(rate_si);
+  return r;
+}
+
 std::string unit_label(const Record& record, bool integrated) {
   if (!record.unit_given) {
     const bool angle = record.kind == InputKind::angle;

@@ -6,9 +6,11 @@
 #include <cstdint>
 #include <functional>
 #include <numbers>
+#include <string>
 #include <vector>
 
 #include "imunoise/error.hpp"
+#include "imunoise/load/record.hpp"
 #include "imunoise/redundant/analysis.hpp"
 #include "imunoise/sim/generator.hpp"
 
@@ -83,6 +85,16 @@ inline std::vector<std::span<const double>> spans_of(const std::vector<std::vect
   std::vector<std::span<const double>> s;
   for (const auto& x : v) s.emplace_back(x);
   return s;
+}
+
+/// One record per simulated sensor ("sensor1", ...), rad/s, as the in-motion analysis takes them.
+inline std::vector<Record> as_records(std::vector<std::vector<double>> rates, double rate_hz) {
+  std::vector<Record> out;
+  for (std::size_t i = 0; i < rates.size(); ++i) {
+    out.push_back(rate_record("sensor" + std::to_string(i + 1), std::move(rates[i]), rate_hz,
+                              Unit{"rad/s", Quantity::angular_rate, 1.0}));
+  }
+  return out;
 }
 
 }  // namespace imunoise::redundant_test

@@ -22,6 +22,7 @@
 #include "imunoise/sim/generator.hpp"
 #include "imunoise/study/in_motion.hpp"
 #include "imunoise/study/in_motion_container.hpp"
+#include "redundant/redundant_test_support.hpp"
 #include "redundant/ulog_unit_writer.hpp"
 
 namespace {
@@ -41,20 +42,6 @@ std::vector<UnitSensor> white_sensors(std::size_t n) {
   return s;
 }
 
-std::vector<Record> as_records(std::vector<std::vector<double>> rates, double rate_hz) {
-  std::vector<Record> out;
-  for (std::size_t i = 0; i < rates.size(); ++i) {
-    Record r;
-    r.name = r.source = "sensor" + std::to_string(i + 1);
-    r.rate_hz = rate_hz;
-    r.n_samples = rates[i].size();
-    r.rate_unit = Unit{"rad/s", Quantity::angular_rate, 1.0};
-    r.unit_given = true;
-    r.rate_si = std::move(rates[i]);
-    out.push_back(std::move(r));
-  }
-  return out;
-}
 
 // The fitted N of every sensor over its truth.
 std::vector<double> n_ratios(const study::InMotionUnit& unit, const std::vector<UnitSensor>& truth) {
@@ -149,7 +136,7 @@ TEST(RedundantInMotionContainer, TimingLeakageOfInstancesOnTheirOwnClocksIsRemov
   std::vector<std::span<const double>> spans(rec.begin(), rec.end());
   const auto without = in_motion_noise(g, spans, kRate, o);
   o.remove_timing_leakage = true;
-  const auto with = study::analyze_in_motion(g, as_records(rec, kRate), o, fit::FitOptions{});
+  const auto with = study::analyze_in_motion(g, redundant_test::as_records(rec, kRate), o, fit::FitOptions{});
   const auto n_with = n_ratios(with, sensors);
   for (std::size_t i = 0; i < 9; ++i) {
     const double before = adev_ratio(without, i, sensors[i].noise.n_unit_sqrt_s, 1.0);
@@ -203,8 +190,8 @@ TEST(RedundantInMotionContainer, GSensitivityIsRecoveredWithinItsStandardErrorAn
   }
   InMotionOptions o;
   o.require_per_sensor = true;
-  const auto without = study::analyze_in_motion(g, as_records(rec, kRate), o, fit::FitOptions{});
-  const auto with = study::analyze_in_motion(g, as_records(rec, kRate), o, fit::FitOptions{}, force);
+  const auto without = study::analyze_in_motion(g, redundant_test::as_records(rec, kRate), o, fit::FitOptions{});
+  const auto with = study::analyze_in_motion(g, redundant_test::as_records(rec, kRate), o, fit::FitOptions{}, force);
   ASSERT_TRUE(with.result.leakage.g_sensitivity_estimated);
   // The visible part: P Gs (P = V^T V; co-aligned triads: each axis minus its mean over the triads).
   std::array<std::array<double, 3>, 9> truth{};

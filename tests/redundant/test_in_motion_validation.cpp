@@ -37,20 +37,6 @@ std::array<double, 3> tumbling(double t) {
 
 constexpr double kDuration_s = 4000.0;
 
-std::vector<Record> as_records(std::vector<std::vector<double>> rates, double rate_hz) {
-  std::vector<Record> out;
-  for (std::size_t i = 0; i < rates.size(); ++i) {
-    Record r;
-    r.name = r.source = "sensor" + std::to_string(i + 1);
-    r.rate_hz = rate_hz;
-    r.n_samples = rates[i].size();
-    r.rate_unit = Unit{"rad/s", Quantity::angular_rate, 1.0};
-    r.unit_given = true;
-    r.rate_si = std::move(rates[i]);
-    out.push_back(std::move(r));
-  }
-  return out;
-}
 
 Geometry co_aligned_triads() {
   std::vector<Axis> axes;

@@ -48,6 +48,12 @@ struct Record {
   std::vector<preprocess::TemperatureBin> temperature_bins;
 };
 
+/// A record of rate samples already in memory and in SI (a simulation, an array from Python):
+/// named `name` (also its source), `unit` the unit its deviations are reported in; unit_given
+/// false labels them "input unit".
+Record rate_record(std::string name, std::vector<double> rate_si, double rate_hz, Unit unit,
+                   bool unit_given = true);
+
 /// Label of the record's rate unit (or of its integral, for tdev/mtie-like estimators): its
 /// name, or "input unit" (with /s or *s) when none was given.
 std::string unit_label(const Record& record, bool integrated = false);
