@@ -128,8 +128,11 @@ std::map<std::int64_t, std::uint64_t> counts_of(const Database& db) {
   return out;
 }
 
-// The Imu messages of topic `id` in the rowid range [first, last], decoded into `out`.
-void read_range(const fs::path& path, std::int64_t id, std::int64_t first, std::int64_t last, detail::ImuColumns& out) {
+// The Imu messages of topic `id` in the rowid range [first, last], decoded into `out`;
+// max_rows bounds the reservation (row ids come from the file: a corrupt range must not
+// reserve more than the file could hold).
+void read_range(const fs::path& path, std::int64_t id, std::int64_t first, std::int64_t last, std::uint64_t max_rows,
+                detail::ImuColumns& out) {
   const Database db(path);
   const Statement s = db.prepare("SELECT id, data FROM messages WHERE id BETWEEN ?1 AND ?2 AND topic_id = ?3");
   sqlite3_bind_int64(s.get(), 1, first);
@@ -137,7 +140,8 @@ void read_range(const fs::path& path, std::int64_t id, std::int64_t first, std::
   sqlite3_bind_int64(s.get(), 3, id);
   // The range's rows bound its Imu messages: reserving them spares the columns their regrowth
   // (a fifth of the read's time before).
-  out.reserve(static_cast<std::size_t>(last - first + 1));
+  const std::uint64_t rows = static_cast<std::uint64_t>(last) - static_cast<std::uint64_t>(first) + 1;
+  out.reserve(static_cast<std::size_t>(std::min(rows, max_rows)));
   detail::ImuSample sample;
   std::string error;
   detail::Bytes plain;
@@ -278,7 +282,7 @@ Recording read_ros2_db3(const std::filesystem::path& path, std::string_view topi
       const auto lo = static_cast<std::int64_t>(static_cast<std::uint64_t>(first) + k * per);
       const auto hi = static_cast<std::int64_t>(std::min<std::uint64_t>(static_cast<std::uint64_t>(first) + (k + 1) * per - 1,
                                                                         static_cast<std::uint64_t>(last)));
-      read_range(file, it->id, lo, hi, part);
+      read_range(file, it->id, lo, hi, bytes / 256, part);
     });
   }
   if (!found) throw InputError(missing);

@@ -230,6 +230,20 @@ TEST_F(Ros2Ulog, Db3TruncatedOrCorruptedIsRefusedOrReadNeverCrash) {
   }
 }
 
+// Row ids come from the file: a bag whose last message id is near 2^62 (ids need not be dense in
+// SQLite) must be read like any other, not reserve memory for 2^62 rows (the fuzzer's find:
+// std::length_error escaped the reader).
+TEST_F(Ros2Ulog, Db3WithSparseHugeRowIdsIsReadWithoutReservingThem) {
+  test::TempDir dir;
+  const fs::path path = dir.path() / "sparse.db3";
+  fs::copy_file(file("bag_le") / "bag_le_0.db3", path);
+  const std::string sql = "UPDATE messages SET id = 4611686018427387904 WHERE id = (SELECT MAX(id) FROM messages)";
+  ASSERT_TRUE(run("/usr/bin/python3 -c \"import sqlite3,sys; c=sqlite3.connect(sys.argv[1]); c.execute(sys.argv[2]); "
+                  "c.commit()\" " + path.string() + " '" + sql + "'"));
+  const Recording r = read_recording(path, topic("/imu"));
+  EXPECT_EQ(r.sample_count(), 1500u);
+}
+
 // Every channel of `r` equals the reference reader's (values bit for bit, times to the ns).
 void expect_matches_reference(const Recording& r, const nlohmann::json& reference) {
   const auto& channels = reference.at("channels");
