@@ -100,7 +100,8 @@ def test_gauss_markov_term_is_found_and_reported():
     data = imunoise.simulate(rate=200.0, duration=1800.0, N=N_TRUE, B=B_TRUE,
                              gm_sigma=1.5e-3, gm_tau=2.0, seed=4)
     r = imunoise.fit(data, 200.0, units="deg/s", terms="Q,N,B,K,GM,SIN")
-    gm = r["terms"]["GM"]
+    assert isinstance(r["terms"]["GM"], list) and len(r["terms"]["GM"]) == 1  # by T_c; wls: one
+    gm = r["terms"]["GM"][0]
     assert gm["test"]["selected"] and gm["sigma"]["identified"]
     assert gm["sigma"]["value"] == pytest.approx(1.5e-3, rel=0.25)
     assert gm["correlation_time_s"]["value"] == pytest.approx(2.0, rel=0.25)
