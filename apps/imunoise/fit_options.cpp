@@ -61,14 +61,13 @@ fit::FitOptions to_fit_options(const FitOptionsCli& options) {
   fo.model_mismatch = !options.exact_model;
   fo.auto_extra_terms = !options.no_auto_terms;
   if (fo.method == fit::Method::gmwm) {
-    // --terms keeps its wls default text when not given: gmwm then selects by WVIC.
-    fit::parse_gmwm_terms(options.terms == "Q,N,B,K" ? "auto" : options.terms, fo.gmwm);
     fo.gmwm.bootstrap = options.bootstrap;
     fo.gmwm.seed = options.seed;
-  } else {
-    if (options.bootstrap > 0) throw InputError("--bootstrap needs --method gmwm");
-    fit::parse_terms(options.terms, fo);
+  } else if (options.bootstrap > 0) {
+    throw InputError("--bootstrap needs --method gmwm");
   }
+  // --terms keeps its wls default text when not given: gmwm then selects by WVIC.
+  fit::parse_method_terms(options.terms, fo);
   std::string why;
   if (!fo.IsValid(&why)) throw InputError("fit options: " + why);
   return fo;

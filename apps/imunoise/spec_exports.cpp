@@ -4,6 +4,7 @@
 
 #include "imunoise/error.hpp"
 #include "imunoise/export/export_target.hpp"
+#include "imunoise/spec/exports.hpp"
 #include "imunoise/spec/write_exports.hpp"
 #include "imunoise/spec/report.hpp"
 
@@ -49,6 +50,9 @@ nlohmann::json run_filter_exports(const FilterExportOptions& options, std::span<
   model.px4_ekf_rate_hz = options.px4_ekf_rate_hz;
   exports::write_targets(specs, model, directory, options.force);
   for (const auto& spec : specs) {
+    for (const auto& line : exports::not_carried(model, exports::target_name(spec.target))) {
+      fmt::print(stderr, "imunoise: warning: --export {}: {}\n", exports::target_name(spec.target), line);
+    }
     for (const auto& path : exports::target_paths(spec, directory)) {
       written.push_back({{"target", exports::target_name(spec.target)}, {"path", path}, {"inflation", options.inflation}});
     }
@@ -79,6 +83,9 @@ nlohmann::json run_spec_exports(const SpecExportOptions& options,
   write_exports({options.kalibr_path, options.kf_json_path, options.filter.inflation,
                  options.filter.kalibr_topic, options.force},
                 coefficients, rate_hz);
+  if (!options.kalibr_path.empty()) {
+    for (const auto& line : not_carried(coefficients, "Kalibr")) fmt::print(stderr, "imunoise: warning: --kalibr: {}\n", line);
+  }
   return comparison;
 }
 

@@ -11,6 +11,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "imunoise/units.hpp"
 
@@ -37,6 +38,12 @@ struct SinusoidTerm {
   Coefficient frequency_hz;
 };
 
+/// True when the term's sigma and correlation time were both identified (positive, finite).
+inline bool identified(const GaussMarkovTerm& g) {
+  return g.sigma.identified && g.correlation_time_s.identified && g.sigma.value > 0.0 &&
+         g.correlation_time_s.value > 0.0;
+}
+
 struct NoiseCoefficients {
   Quantity quantity = Quantity::angular_rate;  ///< angular_rate (gyro) or acceleration (accel)
   double confidence_level = 0.95;              ///< level of every ci_low/ci_high
@@ -45,7 +52,10 @@ struct NoiseCoefficients {
   Coefficient bias_instability;    ///< B: rad/s / m/s^2
   Coefficient rate_random_walk;    ///< K: rad/s/sqrt(s) / m/s^2/sqrt(s)
   Coefficient rate_ramp;           ///< R: rad/s^2 / m/s^3
-  std::optional<GaussMarkovTerm> gauss_markov;
+  /// Every first-order Gauss-Markov term of the model, ordered by correlation time (the wls
+  /// fit has at most one, gmwm any number; empty: none fitted). A term reported but not
+  /// identified (the wls test rejected it) stays in the list with identified = false.
+  std::vector<GaussMarkovTerm> gauss_markov;
   std::optional<SinusoidTerm> sinusoid;
 };
 

@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 
 #include <cmath>
+#include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
@@ -63,8 +64,8 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
                      const std::string& terms, double level, const std::string& taus,
                      const std::string& selection, bool gls, int min_dominant_taus,
                      const std::string& spec_name, double tau_min, double tau_max,
-                     bool keep_short_taus, bool exact_model, bool auto_terms,
-                     const PreprocessArgs& preprocessing) {
+                     bool keep_short_taus, bool exact_model, bool auto_terms, int bootstrap,
+                     std::uint64_t seed, const PreprocessArgs& preprocessing) {
   if (data.ndim() != 1) throw InputError("data must be a 1-D array, got " + std::to_string(data.ndim()) + "-D");
   checked_rate_hz(rate);
   const std::span<const double> samples(data.data(), static_cast<std::size_t>(data.shape(0)));
@@ -74,7 +75,13 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
   options.selection = fit::parse_selection(selection);
   options.use_correlation = gls;
   options.min_dominant_taus = min_dominant_taus;
-  fit::parse_terms(terms, options);
+  if (options.method == fit::Method::gmwm) {
+    options.gmwm.bootstrap = bootstrap;
+    options.gmwm.seed = seed;
+  } else if (bootstrap != 0) {
+    throw InputError("bootstrap needs method='gmwm'");
+  }
+  fit::parse_method_terms(terms, options);  // gmwm: "N,K,GM,GM" or "auto" (the default list)
   options.tau_min_s = tau_min;
   options.tau_max_s = tau_max;
   options.exclude_distorted = !keep_short_taus;
@@ -145,7 +152,7 @@ void register_fit(py::module_& m) {
                   const std::string& method, const std::string& terms, double level, const std::string& taus,
                   const std::string& selection, bool gls, int min_dominant_taus, const std::string& spec_name,
                   double tau_min, double tau_max, bool keep_short_taus, bool exact_model, bool auto_terms,
-                  const py::object& time, const py::object& skip, const std::string& detrend,
+                  int bootstrap, std::uint64_t seed, const py::object& time, const py::object& skip, const std::string& detrend,
                   const py::object& outliers, const std::string& gaps, bool davar, double davar_window,
                   const py::object& temperature, double temperature_bin) {
           // Preprocessing keywords (preprocessing.hpp); rate may come from time= instead.
@@ -158,14 +165,15 @@ void register_fit(py::module_& m) {
           }
           return fit_array(data, rate_hz, data_type, units, method, terms, level, taus, selection, gls,
                            min_dominant_taus, spec_name, tau_min, tau_max, keep_short_taus, exact_model,
-                           auto_terms, pre);
+                           auto_terms, bootstrap, seed, pre);
         },
         py::arg("data"), py::arg("rate") = py::none(), py::arg("data_type") = "rate",
         py::arg("units") = "", py::arg("method") = "wls", py::arg("terms") = "Q,N,B,K",
         py::arg("level") = 0.95, py::arg("taus") = "octave", py::arg("selection") = "none",
         py::arg("gls") = false, py::arg("min_dominant_taus") = 2, py::arg("spec") = "",
         py::arg("tau_min") = 0.0, py::arg("tau_max") = 0.0, py::arg("keep_short_taus") = false,
-        py::arg("exact_model") = false, py::arg("auto_terms") = true,
+        py::arg("exact_model") = false, py::arg("auto_terms") = true, py::arg("bootstrap") = 0,
+        py::arg("seed") = 1,
         py::arg("time") = py::none(), py::arg("skip") = py::none(), py::arg("detrend") = "none",
         py::arg("outliers") = py::none(), py::arg("gaps") = "fail", py::arg("davar") = false,
         py::arg("davar_window") = 0.0, py::arg("temperature") = py::none(), py::arg("temperature_bin") = 5.0,
@@ -177,7 +185,12 @@ void register_fit(py::module_& m) {
         "(--tau-min/--tau-max); keep_short_taus keeps the shortest taus bent by the sampling "
         "chain (--keep-short-taus); exact_model drops the model-mismatch scatter "
         "(--exact-model); auto_terms=False does not try GM and SIN automatically when chi2 "
-        "rejects the power-law model (--no-auto-terms). Preprocessing keywords as imunoise.dev: "
+        "rejects the power-law model (--no-auto-terms). method='gmwm' fits by the generalized "
+        "method of wavelet moments: terms like 'N,K,GM,GM' (GM repeated) or 'auto' (WVIC "
+        "selection; the default terms mean auto), bootstrap=R parametric-bootstrap replicates "
+        "and seed= (--bootstrap, --seed); the result then has a 'gmwm' section (terms with "
+        "intervals, candidates, J test, WVIC) and terms['GM'] lists every Gauss-Markov term. "
+        "Preprocessing keywords as imunoise.dev: "
         "time=, skip=, detrend=, outliers=, gaps=, davar=, davar_window=, temperature=, "
         "temperature_bin= (a fit per temperature bin under \"temperature_bins\").");
 }

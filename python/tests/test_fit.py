@@ -100,12 +100,55 @@ def test_gauss_markov_term_is_found_and_reported():
     data = imunoise.simulate(rate=200.0, duration=1800.0, N=N_TRUE, B=B_TRUE,
                              gm_sigma=1.5e-3, gm_tau=2.0, seed=4)
     r = imunoise.fit(data, 200.0, units="deg/s", terms="Q,N,B,K,GM,SIN")
-    gm = r["terms"]["GM"]
+    assert isinstance(r["terms"]["GM"], list) and len(r["terms"]["GM"]) == 1  # by T_c; wls: one
+    gm = r["terms"]["GM"][0]
     assert gm["test"]["selected"] and gm["sigma"]["identified"]
     assert gm["sigma"]["value"] == pytest.approx(1.5e-3, rel=0.25)
     assert gm["correlation_time_s"]["value"] == pytest.approx(2.0, rel=0.25)
     assert gm["sigma"]["ci_low"] <= gm["sigma"]["value"] <= gm["sigma"]["ci_high"]
     assert not r["terms"]["SIN"]["test"]["selected"]
+
+
+
+def test_gmwm_method_returns_its_section():
+    # 30 min at 100 Hz, white noise + a Gauss-Markov term (5e-3 deg/s, 1 s): the gmwm fit of
+    # N + GM, with a small seeded bootstrap; the checks are of the document, not of accuracy
+    # (tests/fit/test_gmwm.cpp measures that).
+    data = imunoise.simulate(rate=100.0, duration=1800.0, N=1e-3, gm_sigma=5e-3, gm_tau=1.0, seed=8)
+    r = imunoise.fit(data, 100.0, units="deg/s", method="gmwm", terms="N,GM", bootstrap=4, seed=3)
+    assert r["method"] == "gmwm"
+    g = r["gmwm"]
+    assert g["model"] == "N+GM" and g["status"] == "converged"
+    assert [t["term"] for t in g["terms"]] == ["N", "GM"]
+    for key in ("j_statistic", "j_p_value", "wvic", "objective"):
+        assert math.isfinite(g[key]), key
+    assert g["dof"] > 0
+    assert len(g["candidates"]) == 1 and g["candidates"][0]["selected"]
+    assert g["bootstrap"]["replicates"] > 0 and g["bootstrap"]["seed"] == 3
+    gm = g["GM"][0]
+    assert gm["sigma"]["identified"] and gm["correlation_time_s"]["identified"]
+    lo, hi = gm["correlation_time_s"]["bootstrap_ci"]
+    assert lo <= hi
+    assert gm["sigma"]["ci_low"] <= gm["sigma"]["value"] <= gm["sigma"]["ci_high"]
+    # terms.GM lists the same term (a list by correlation time), N is in terms.N.
+    assert len(r["terms"]["GM"]) == 1
+    assert r["terms"]["GM"][0]["correlation_time_s"]["value"] == gm["correlation_time_s"]["value"]
+    assert r["terms"]["N"]["identified"]
+    assert g["wavelet_variance"] and g["wavelet_variance_unit"] == "deg/s^2"
+    # Seeded: the same bootstrap again.
+    again = imunoise.fit(data, 100.0, units="deg/s", method="gmwm", terms="N,GM", bootstrap=4, seed=3)
+    assert again["gmwm"]["GM"][0]["correlation_time_s"]["bootstrap_ci"] == [lo, hi]
+    # The default terms mean automatic selection by WVIC: a table of candidates, one selected.
+    auto = imunoise.fit(data, 100.0, units="deg/s", method="gmwm")
+    cands = auto["gmwm"]["candidates"]
+    assert len(cands) > 1 and sum(c["selected"] for c in cands) == 1
+    assert all("wvic" in c and "j_statistic" in c for c in cands)
+    rep = imunoise.fit(data, 100.0, units="deg/s", method="gmwm", terms="N,K,GM,GM")
+    assert rep["gmwm"]["model"] == "N+K+GM+GM"
+    with pytest.raises(ValueError, match="gmwm"):
+        imunoise.fit(data, 100.0, units="deg/s", bootstrap=5)
+    with pytest.raises(ValueError, match="XY"):
+        imunoise.fit(data, 100.0, units="deg/s", method="gmwm", terms="N,XY")
 
 
 # The command line's fit switches for real sensors: tau_min/tau_max, keep_short_taus, exact_model,

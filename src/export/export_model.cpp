@@ -5,6 +5,7 @@
 #include <fmt/core.h>
 
 #include "imunoise/error.hpp"
+#include "imunoise/spec/exports.hpp"
 
 namespace imunoise::exports {
 namespace {
@@ -48,11 +49,24 @@ SensorModel combine_axes(std::span<const AxisFit> axes) {
   model.coefficients.bias_instability = largest(axes, &NoiseCoefficients::bias_instability);
   model.coefficients.rate_random_walk = largest(axes, &NoiseCoefficients::rate_random_walk);
   model.coefficients.rate_ramp = largest(axes, &NoiseCoefficients::rate_ramp);
-  model.coefficients.gauss_markov.reset();
+  // No filter format has a Gauss-Markov or sinusoid field: not_carried says what is dropped.
+  model.coefficients.gauss_markov.clear();
   model.coefficients.sinusoid.reset();
+  model.axes.assign(axes.begin(), axes.end());
   model.selection = axes.size() == 1 ? "one axis"
                                      : fmt::format("per term the largest of {} axes", axes.size());
   return model;
+}
+
+std::vector<std::string> not_carried(const ExportModel& model, std::string_view format) {
+  std::vector<std::string> out;
+  for (const auto* sensor : {&model.gyro, &model.accel}) {
+    if (!*sensor) continue;
+    for (const auto& a : (*sensor)->axes) {
+      for (const auto& line : imunoise::not_carried(a.coefficients, format)) out.push_back(a.channel + ": " + line);
+    }
+  }
+  return out;
 }
 
 void check_export_model(const ExportModel& model, const std::string& target) {

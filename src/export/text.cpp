@@ -57,6 +57,7 @@ std::string measured_header(const ExportModel& model, std::string_view target_ti
                      number(model.rate_hz));
   out += sensor_lines(comment, model.gyro, true);
   out += sensor_lines(comment, model.accel, false);
+  for (const auto& line : not_carried(model, target_title)) out += fmt::format("{} {}\n", comment, line);
   const double f = model.inflation;
   out += fmt::format("{} inflation factor: {}{}\n", comment, number(f),
                      f == 1.0 ? " (values are the measured ones)"

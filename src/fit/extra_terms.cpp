@@ -685,7 +685,7 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
       Coefficient none;
       none.ci_low = 0.0;
       none.note = why;
-      if (e == kGM) coefs.gauss_markov = GaussMarkovTerm{none, none};
+      if (e == kGM) coefs.gauss_markov = {GaussMarkovTerm{none, none}};
       else coefs.sinusoid = SinusoidTerm{none, none};
     }
   };
@@ -816,7 +816,7 @@ void fit_extra_terms(const CurveView& curve, std::size_t n_phase, double tau0_s,
       // The best trial value, for the record (what the fit would have said).
       par.note = t.verdict + fmt::format("; best trial value {:.4g}", c.fit.p.of(e));
     }
-    if (e == kGM) coefs.gauss_markov = GaussMarkovTerm{amp, par};
+    if (e == kGM) coefs.gauss_markov = {GaussMarkovTerm{amp, par}};
     else coefs.sinusoid = SinusoidTerm{amp, par};
   }
 

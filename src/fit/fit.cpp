@@ -340,9 +340,9 @@ void try_automatic_terms(const Curve& curve, std::size_t n_phase, double tau0_s,
   }
   trial.extras.automatic = true;
   std::string added;
-  if (gm && trial.coefficients.gauss_markov) {
+  if (gm && !trial.coefficients.gauss_markov.empty()) {
     added = fmt::format("a Gauss-Markov term (T_c = {:.3g} s) [{}]",
-                        trial.coefficients.gauss_markov->correlation_time_s.value,
+                        trial.coefficients.gauss_markov.front().correlation_time_s.value,
                         trial.extras.gauss_markov.verdict);
   }
   if (sin && trial.coefficients.sinusoid) {
@@ -367,6 +367,17 @@ FitResult fit_gmwm_curve(const std::vector<std::size_t>& m, const std::vector<do
   GmwmOptions go = options.gmwm;
   go.level = options.level;
   GmwmResult g = fit_gmwm(m, avar, n_phase, tau0_s, go);
+  // The report's convention for a term not identified: value 0 (the optimiser's last T_c or f0
+  // is no estimate; it stays in the note), no interval.
+  for (auto& t : g.terms) {
+    if (t.shape.identified || !(t.kind == GmwmTerm::GM || t.kind == GmwmTerm::SIN)) continue;
+    if (t.shape.value > 0.0) {
+      t.shape.note += fmt::format("{}best trial value {:.4g} {}", t.shape.note.empty() ? "" : "; ", t.shape.value,
+                                  t.kind == GmwmTerm::GM ? "s" : "Hz");
+    }
+    t.shape.value = 0.0;
+    t.shape.ci_low = t.shape.ci_high = std::numeric_limits<double>::quiet_NaN();
+  }
   FitSummary& summary = result.summary;
   summary.points_used = g.scales.size();
   summary.chi2 = g.j_statistic;
@@ -389,7 +400,10 @@ FitResult fit_gmwm_curve(const std::vector<std::size_t>& m, const std::vector<do
       case GmwmTerm::B: j = kB; break;
       case GmwmTerm::K: j = kK; break;
       case GmwmTerm::R: j = kR; break;
-      default: break;
+      // Every GM term goes to the coefficients (g.terms has them by correlation time), so the
+      // exports, the navigation error and the report take them all.
+      case GmwmTerm::GM: result.coefficients.gauss_markov.push_back({t.magnitude, t.shape}); break;
+      case GmwmTerm::SIN: result.coefficients.sinusoid = SinusoidTerm{t.magnitude, t.shape}; break;
     }
     if (j < 0) continue;
     coefficient(result.coefficients, j) = t.magnitude;

@@ -118,6 +118,7 @@ bool GmwmOptions::IsValid(std::string* error) const {
   if (!(level > 0.0 && level < 1.0)) return fail("gmwm: level must be in (0, 1)");
   if (weight_iterations < 1 || weight_iterations > 20) return fail("gmwm: weight_iterations must be 1..20");
   if (bootstrap < 0 || bootstrap > 100000) return fail("gmwm: bootstrap must be 0..100000");
+  if (max_iterations < 1 || max_iterations > 100000) return fail("gmwm: max_iterations must be 1..100000");
   return true;
 }
 

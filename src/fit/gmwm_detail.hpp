@@ -24,6 +24,7 @@ struct GmwmCurve {
   double tau0_s = 0.0;
   unsigned threads = 1;  ///< for the covariance sums
   bool full_weight = false;  ///< W = Sigma^-1 (true) or diag(Sigma)^-1 (GmwmOptions::full_weight)
+  int max_iterations = 200;  ///< LM iterations per start (GmwmOptions::max_iterations)
 };
 
 /// Where each term's parameters sit in the parameter vector (log variance, then log T_c or

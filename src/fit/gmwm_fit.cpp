@@ -23,7 +23,6 @@ namespace imunoise::fit {
 namespace detail {
 namespace {
 
-constexpr int kLmIterations = 200;
 constexpr std::size_t kStartsKept = 3;
 constexpr double kGmPeakRatio = 1.89262;  // tau of the Gauss-Markov Allan peak / T_c
 
@@ -144,7 +143,7 @@ ModelFit fit_model(const Layout& layout, const GmwmCurve& c, const Matrix& white
   best.lm.cost = std::numeric_limits<double>::infinity();
   std::vector<Vector> tried;
   auto run = [&](const Vector& p0) {
-    LmResult r = levenberg_marquardt(layout, c, whiten, p0, bounds, kLmIterations);
+    LmResult r = levenberg_marquardt(layout, c, whiten, p0, bounds, c.max_iterations);
     if (std::isfinite(r.cost) && r.cost < best.lm.cost) {
       best.lm = std::move(r);
       best.ok = true;
@@ -361,6 +360,7 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
   c.tau0_s = tau0_s;
   c.threads = options.threads;
   c.full_weight = options.full_weight;
+  c.max_iterations = options.max_iterations;
   for (std::size_t i = 0; i < m.size(); ++i) {
     const bool dyadic = m[i] > 0 && (m[i] & (m[i] - 1)) == 0;
     if (dyadic && avar[i] > 0.0 && std::isfinite(avar[i]) && n_phase > 2 * m[i]) {
@@ -384,9 +384,10 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
       if (static_cast<std::size_t>(Layout(t).parameters) < k) candidates.push_back(t);
     }
     if (candidates.empty()) {
-      result.status = GmwmStatus::too_few_scales;
-      result.message = fmt::format("{} dyadic scales are too few for any candidate model", k);
-      return result;
+      throw InputError(fmt::format(
+          "gmwm --terms auto: the curve has {} dyadic scale(s), too few for any candidate model (the "
+          "smallest, N, needs 2); fix: a longer record, a wider --tau-min/--tau-max or --method wls",
+          k));
     }
   } else {
     std::vector<GmwmTerm> terms = options.terms;
@@ -587,6 +588,24 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
     return a.shape.value < b.shape.value;
   });
   for (std::size_t i = 0; i < gm_pos.size(); ++i) result.terms[gm_pos[i]] = gms[i];
+  if (result.status == GmwmStatus::no_convergence) {
+    // The last iterate is not an estimate: no term is reported as identified from it.
+    const std::string stopped = fmt::format(
+        "not identified: the gmwm fit of {} did not converge in {} iterations (the last iterate is no "
+        "estimate); fix: fewer terms (--terms auto selects among smaller models), a longer record or "
+        "--method wls",
+        result.model, options.max_iterations);
+    for (auto& e : result.terms) {
+      for (Coefficient* coef : {&e.magnitude, &e.shape}) {
+        coef->identified = false;
+        coef->note = stopped;
+      }
+      e.magnitude.value = 0.0;
+      e.magnitude.ci_low = 0.0;
+      e.magnitude.ci_high = std::numeric_limits<double>::quiet_NaN();
+    }
+    result.warnings.push_back("gmwm: " + result.model + " " + stopped);
+  }
   if (result.j_p_value < 1e-3) {
     result.warnings.push_back(fmt::format(
         "gmwm: the J test rejects the model {} (J = {:.1f} on {} dof, p = {:.2g}): the curve is not "

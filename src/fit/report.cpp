@@ -39,33 +39,37 @@ nlohmann::json test_json(const ExtraTermTest& t, const FitSummary& summary) {
   return j;
 }
 
-/// "GM" {sigma, correlation_time_s, test} and "SIN" {amplitude, frequency_hz, test}; rate-like
-/// values in the record's unit (and deg/h for a gyro).
+/// A rate-like coefficient in the record's unit (and deg/h for a gyro).
+nlohmann::json rate_json(const RecordInfo& record, const Coefficient& c) {
+  nlohmann::json j = coefficient_json(c, record.rate_unit.to_si, record.unit_label);
+  if (record.gyro) {
+    j["customary"] = customary_json(c, customary_gyro_B);  // a rate: deg/h
+  }
+  return j;
+}
+
+/// One Gauss-Markov term: {sigma, correlation_time_s}.
+nlohmann::json gauss_markov_json(const RecordInfo& record, const GaussMarkovTerm& g) {
+  return {{"sigma", rate_json(record, g.sigma)},
+          {"correlation_time_s", coefficient_json(g.correlation_time_s, 1.0, "s")}};
+}
+
+/// "GM" [{sigma, correlation_time_s, fitted, test}] (a list of one: the wls fit has one
+/// Gauss-Markov term) and "SIN" {amplitude, frequency_hz, test}.
 void add_extra_terms(const RecordInfo& record, const FitOptions& options, const FitResult& r,
                      nlohmann::json& terms) {
-  const double f = record.rate_unit.to_si;
-  auto rate_json = [&](const Coefficient& c) {
-    nlohmann::json j = coefficient_json(c, f, record.unit_label);
-    if (record.gyro) {
-      j["customary"] = customary_json(c, customary_gyro_B);  // a rate: deg/h
-    }
-    return j;
-  };
   const bool automatic = r.extras.automatic;
   if (options.gauss_markov || automatic) {
     nlohmann::json gm{{"fitted", true}, {"test", test_json(r.extras.gauss_markov, r.summary)}};
     if (automatic) gm["automatic"] = r.extras.reason;
-    if (r.coefficients.gauss_markov) {
-      gm["sigma"] = rate_json(r.coefficients.gauss_markov->sigma);
-      gm["correlation_time_s"] = coefficient_json(r.coefficients.gauss_markov->correlation_time_s, 1.0, "s");
-    }
-    terms["GM"] = std::move(gm);
+    if (!r.coefficients.gauss_markov.empty()) gm.update(gauss_markov_json(record, r.coefficients.gauss_markov.front()));
+    terms["GM"] = nlohmann::json::array({std::move(gm)});
   }
   if (options.sinusoid || automatic) {
     nlohmann::json sin{{"fitted", true}, {"test", test_json(r.extras.sinusoid, r.summary)}};
     if (automatic) sin["automatic"] = r.extras.reason;
     if (r.coefficients.sinusoid) {
-      sin["amplitude"] = rate_json(r.coefficients.sinusoid->amplitude);
+      sin["amplitude"] = rate_json(record, r.coefficients.sinusoid->amplitude);
       sin["frequency_hz"] = coefficient_json(r.coefficients.sinusoid->frequency_hz, 1.0, "Hz");
     }
     terms["SIN"] = std::move(sin);
@@ -165,6 +169,14 @@ void parse_terms(std::string_view list, FitOptions& options) {
   }
 }
 
+void parse_method_terms(std::string_view list, FitOptions& options) {
+  if (options.method == Method::gmwm) {
+    parse_gmwm_terms(list == kDefaultTerms ? std::string_view("auto") : list, options.gmwm);
+  } else {
+    parse_terms(list, options);
+  }
+}
+
 Selection parse_selection(std::string_view name) {
   if (name == "none") return Selection::none;
   if (name == "aic") return Selection::aic;
@@ -210,6 +222,21 @@ nlohmann::json report_json(const RecordInfo& record, const FitOptions& options,
   }
   if (options.gauss_markov || options.sinusoid || r.extras.automatic) {
     add_extra_terms(record, options, r, terms);
+  }
+  if (r.gmwm) {
+    // Every GM term of the gmwm model, by correlation time, in the same shape as the wls one's;
+    // the bootstrap intervals are in the "gmwm" section.
+    nlohmann::json gm = nlohmann::json::array();
+    for (const auto& g : r.coefficients.gauss_markov) {
+      nlohmann::json j = gauss_markov_json(record, g);
+      j["fitted"] = true;
+      gm.push_back(std::move(j));
+    }
+    if (!gm.empty()) terms["GM"] = std::move(gm);
+    if (const auto& s = r.coefficients.sinusoid) {
+      terms["SIN"] = {{"fitted", true}, {"amplitude", rate_json(record, s->amplitude)},
+                      {"frequency_hz", coefficient_json(s->frequency_hz, 1.0, "Hz")}};
+    }
   }
   const auto& s = r.summary;
   nlohmann::json residuals = nlohmann::json::array();

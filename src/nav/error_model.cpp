@@ -50,11 +50,11 @@ Eigen::VectorXd step_input(const Eigen::MatrixXd& f, const Eigen::VectorXd& b, d
 FlickerRange flicker_range(const NavOptions& o) { return {o.dt_s, std::max(o.duration_s, 10.0 * o.dt_s)}; }
 
 SensorTerms sensor_terms(const GyroTerms& t) {
-  return {t.q_rad, t.n_rad_sqrt_s, t.b_rad_s, t.k_rad_s_sqrt_s, t.r_rad_s2, t.gm_sigma_rad_s, t.gm_time_s, t.bias_rad_s};
+  return {t.q_rad, t.n_rad_sqrt_s, t.b_rad_s, t.k_rad_s_sqrt_s, t.r_rad_s2, t.gauss_markov, t.bias_rad_s};
 }
 
 SensorTerms sensor_terms(const AccelTerms& t) {
-  return {t.q_m_s, t.n_m_s_sqrt_s, t.b_m_s2, t.k_m_s2_sqrt_s, t.r_m_s3, t.gm_sigma_m_s2, t.gm_time_s, t.bias_m_s2};
+  return {t.q_m_s, t.n_m_s_sqrt_s, t.b_m_s2, t.k_m_s2_sqrt_s, t.r_m_s3, t.gauss_markov, t.bias_m_s2};
 }
 
 AxisProcesses axis_processes(const SensorTerms& t, const FlickerRange& range) {
@@ -65,7 +65,9 @@ AxisProcesses axis_processes(const SensorTerms& t, const FlickerRange& range) {
     p.gauss_markov = bank.poles;
     white2 += bank.white_n_unit_sqrt_s * bank.white_n_unit_sqrt_s;
   }
-  if (t.gm_sigma > 0.0) p.gauss_markov.push_back({t.gm_sigma, t.gm_time_s});
+  for (const auto& g : t.gauss_markov) {
+    if (g.sigma > 0.0) p.gauss_markov.push_back({g.sigma, g.time_s});
+  }
   p.white_n = std::sqrt(white2);
   return p;
 }

@@ -49,15 +49,14 @@ struct SensorTerms {
   double b = 0.0;         ///< bias instability (u)
   double k = 0.0;         ///< random walk (u / sqrt(s))
   double r = 0.0;         ///< ramp (u / s)
-  double gm_sigma = 0.0;  ///< Gauss-Markov sigma (u)
-  double gm_time_s = 0.0;
+  std::vector<GaussMarkovNoise> gauss_markov;  ///< every Gauss-Markov term: sigma (u), T_c (s)
   double bias = 0.0;      ///< constant (u)
 };
 SensorTerms sensor_terms(const GyroTerms& terms);
 SensorTerms sensor_terms(const AccelTerms& terms);
 
 /// Gauss-Markov processes and white noise that make up one sensor's B (the simulator's bank)
-/// plus its fitted Gauss-Markov term.
+/// plus its fitted Gauss-Markov terms (every one).
 struct AxisProcesses {
   std::vector<sim::GaussMarkovPole> gauss_markov;  ///< sigma (u), correlation time (s)
   double white_n = 0.0;                            ///< N combined with the bank's white part (u sqrt(s))

@@ -66,12 +66,35 @@ sim::ChannelSpec channel_of(const detail::SensorTerms& t, const detail::FlickerR
   m.b_unit = t.b;
   m.k_unit_per_sqrt_s = t.k;
   m.r_unit_per_s = t.r;
-  m.gm_sigma_unit = t.gm_sigma;
-  m.gm_time_s = t.gm_time_s;
+  // The simulator's channel has one Gauss-Markov process: the first term here, the others in
+  // gauss_markov_channels (summed).
+  if (!t.gauss_markov.empty()) {
+    m.gm_sigma_unit = t.gauss_markov.front().sigma;
+    m.gm_time_s = t.gauss_markov.front().time_s;
+  }
   m.bias_unit = t.bias;
   m.flicker_tau_min_s = range.tau_min_s;
   m.flicker_tau_max_s = range.tau_max_s;
   return c;
+}
+
+// One channel per Gauss-Markov term after the first, added to the sensor's samples. Stream
+// 8 g + sensor for the g-th extra term (g >= 1): disjoint from the channels 0..6 above.
+struct ExtraChannel {
+  sim::ChannelSpec spec;
+  std::uint64_t stream = 0;
+  int sensor = 0;  // 0..2 gyro x y z, 3..4 accelerometer x y
+};
+
+void add_gauss_markov_channels(const detail::SensorTerms& t, int sensor, std::vector<ExtraChannel>& out) {
+  for (std::size_t g = 1; g < t.gauss_markov.size(); ++g) {
+    ExtraChannel c;
+    c.spec.noise.gm_sigma_unit = t.gauss_markov[g].sigma;
+    c.spec.noise.gm_time_s = t.gauss_markov[g].time_s;
+    c.stream = 8 * static_cast<std::uint64_t>(g) + static_cast<std::uint64_t>(sensor);
+    c.sensor = sensor;
+    out.push_back(c);
+  }
 }
 
 std::uint64_t run_seed(std::uint64_t seed, std::size_t run) {
@@ -104,8 +127,11 @@ ModelSeries montecarlo_series(const NavOptions& o, const ImuTerms& terms, const 
   const detail::NavStep step = detail::nav_step(o);
   const double rate_hz = 1.0 / o.dt_s;
   std::array<sim::ChannelSpec, 3> specs;
+  std::vector<ExtraChannel> extra;
   for (int a = 0; a < 3; ++a) {
-    specs[static_cast<std::size_t>(a)] = channel_of(detail::sensor_terms(terms.gyro[static_cast<std::size_t>(a)]), range);
+    const detail::SensorTerms t = detail::sensor_terms(terms.gyro[static_cast<std::size_t>(a)]);
+    specs[static_cast<std::size_t>(a)] = channel_of(t, range);
+    add_gauss_markov_channels(t, a, extra);
   }
   // The horizontal accelerometers, simulated only when they have a term.
   std::array<sim::ChannelSpec, 2> accel_specs;
@@ -113,8 +139,16 @@ ModelSeries montecarlo_series(const NavOptions& o, const ImuTerms& terms, const 
   for (int a = 0; a < 2; ++a) {
     const detail::SensorTerms t = detail::sensor_terms(terms.accel[static_cast<std::size_t>(a)]);
     accel_specs[static_cast<std::size_t>(a)] = channel_of(t, range);
-    for (double v : {t.q, t.n, t.b, t.k, t.r, t.gm_sigma, t.bias}) accelerometers = accelerometers || v != 0.0;
+    for (double v : {t.q, t.n, t.b, t.k, t.r, gauss_markov_rss(t.gauss_markov), t.bias}) {
+      accelerometers = accelerometers || v != 0.0;
+    }
   }
+  if (accelerometers) {
+    for (int a = 0; a < 2; ++a) {
+      add_gauss_markov_channels(detail::sensor_terms(terms.accel[static_cast<std::size_t>(a)]), 3 + a, extra);
+    }
+  }
+  for (const auto& c : extra) sim::ChannelGenerator(c.spec, rate_hz, o.duration_s, o.seed, c.stream);
   // Validate once, up front, where an InputError can still reach the caller directly.
   for (int a = 0; a < 3; ++a) sim::ChannelGenerator(specs[static_cast<std::size_t>(a)], rate_hz, o.duration_s, o.seed, static_cast<std::uint64_t>(a));
   if (accelerometers) {
@@ -138,6 +172,7 @@ ModelSeries montecarlo_series(const NavOptions& o, const ImuTerms& terms, const 
     for (auto& e : eps) e.resize(kChunk);
     std::array<std::vector<double>, 2> acc;
     for (auto& e : acc) e.resize(accelerometers ? kChunk : 0);
+    std::vector<double> part(extra.empty() ? 0 : kChunk);
     for (std::size_t r = b * kBlockRuns; r < std::min(runs, (b + 1) * kBlockRuns); ++r) {
       const std::uint64_t seed = run_seed(o.seed, r);
       const std::array<sim::ChannelSpec, 3> run = run_specs(specs, seed, o.signed_constants, kGyroConstants);
@@ -150,6 +185,8 @@ ModelSeries montecarlo_series(const NavOptions& o, const ImuTerms& terms, const 
           gens.emplace_back(accel_run[static_cast<std::size_t>(a)], rate_hz, o.duration_s, seed, kAccelChannel0 + static_cast<std::uint64_t>(a));
         }
       }
+      std::vector<sim::ChannelGenerator> extra_gens;
+      for (const auto& c : extra) extra_gens.emplace_back(c.spec, rate_hz, o.duration_s, seed, c.stream);
       Eigen::Matrix<double, detail::kNavStates, 1> state = Eigen::Matrix<double, detail::kNavStates, 1>::Zero();
       std::size_t next = 0;
       while (next < times && report_step[next] == 0) sums.add(next++, 0.0, 0.0);
@@ -159,6 +196,12 @@ ModelSeries montecarlo_series(const NavOptions& o, const ImuTerms& terms, const 
         for (int a = 0; a < 3; ++a) gens[static_cast<std::size_t>(a)].generate(std::span<double>(eps[static_cast<std::size_t>(a)].data(), n));
         if (accelerometers) {
           for (int a = 0; a < 2; ++a) gens[3 + static_cast<std::size_t>(a)].generate(std::span<double>(acc[static_cast<std::size_t>(a)].data(), n));
+        }
+        for (std::size_t x = 0; x < extra.size(); ++x) {
+          extra_gens[x].generate(std::span<double>(part.data(), n));
+          const int sensor = extra[x].sensor;
+          std::vector<double>& into = sensor < 3 ? eps[static_cast<std::size_t>(sensor)] : acc[static_cast<std::size_t>(sensor - 3)];
+          for (std::size_t i = 0; i < n; ++i) into[i] += part[i];
         }
         for (std::size_t i = 0; i < n; ++i) {
           const Eigen::Vector3d e(eps[0][i], eps[1][i], eps[2][i]);

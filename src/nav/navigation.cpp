@@ -52,41 +52,55 @@ namespace {
 
 // The present terms of a sensor's coefficients (identified values only), in its SI unit.
 struct Present {
-  double q, n, b, k, r, gm_sigma, gm_time_s;
+  double q, n, b, k, r;
+  std::vector<GaussMarkovNoise> gauss_markov;
 };
 
 Present present_of(const NoiseCoefficients& c) {
   auto v = [](const Coefficient& k) { return k.identified ? std::abs(k.value) : 0.0; };
   Present p{v(c.quantization), v(c.random_walk), v(c.bias_instability), v(c.rate_random_walk),
-            c.rate_ramp.identified ? c.rate_ramp.value : 0.0, 0.0, 0.0};
-  if (c.gauss_markov && c.gauss_markov->sigma.identified && c.gauss_markov->correlation_time_s.identified &&
-      c.gauss_markov->sigma.value > 0.0) {
-    p.gm_sigma = c.gauss_markov->sigma.value;
-    p.gm_time_s = c.gauss_markov->correlation_time_s.value;
+            c.rate_ramp.identified ? c.rate_ramp.value : 0.0, {}};
+  // Every identified Gauss-Markov term (gmwm may fit several), in the fit's order (by T_c).
+  for (const auto& g : c.gauss_markov) {
+    if (identified(g)) p.gauss_markov.push_back({g.sigma.value, g.correlation_time_s.value});
   }
   return p;
 }
 
 }  // namespace
 
+double gauss_markov_rss(const std::vector<GaussMarkovNoise>& terms) {
+  double s2 = 0.0;
+  for (const auto& g : terms) s2 += g.sigma * g.sigma;
+  return std::sqrt(s2);
+}
+
 GyroTerms terms_of(const GyroAxisNoise& axis) {
-  const Present p = present_of(axis.coefficients);
-  return {p.q, p.n, p.b, p.k, p.r, p.gm_sigma, p.gm_time_s, axis.bias_rad_s};
+  Present p = present_of(axis.coefficients);
+  return {p.q, p.n, p.b, p.k, p.r, std::move(p.gauss_markov), axis.bias_rad_s};
 }
 
 AccelTerms terms_of(const AccelAxisNoise& axis) {
-  const Present p = present_of(axis.coefficients);
-  return {p.q, p.n, p.b, p.k, p.r, p.gm_sigma, p.gm_time_s, axis.bias_m_s2};
+  Present p = present_of(axis.coefficients);
+  return {p.q, p.n, p.b, p.k, p.r, std::move(p.gauss_markov), axis.bias_m_s2};
 }
 
 namespace {
 
+// The GM entry: the sigmas' root sum of squares (0 when there is none).
 std::array<double, 7> values_of(const GyroTerms& t) {
-  return {t.q_rad, t.n_rad_sqrt_s, t.b_rad_s, t.k_rad_s_sqrt_s, t.r_rad_s2, t.gm_sigma_rad_s, t.bias_rad_s};
+  return {t.q_rad, t.n_rad_sqrt_s, t.b_rad_s, t.k_rad_s_sqrt_s, t.r_rad_s2, gauss_markov_rss(t.gauss_markov), t.bias_rad_s};
 }
 
 std::array<double, 7> values_of(const AccelTerms& t) {
-  return {t.q_m_s, t.n_m_s_sqrt_s, t.b_m_s2, t.k_m_s2_sqrt_s, t.r_m_s3, t.gm_sigma_m_s2, t.bias_m_s2};
+  return {t.q_m_s, t.n_m_s_sqrt_s, t.b_m_s2, t.k_m_s2_sqrt_s, t.r_m_s3, gauss_markov_rss(t.gauss_markov), t.bias_m_s2};
+}
+
+bool valid_gauss_markov(const std::vector<GaussMarkovNoise>& terms) {
+  for (const auto& g : terms) {
+    if (!std::isfinite(g.sigma) || (g.sigma > 0.0 && !(g.time_s > 0.0 && std::isfinite(g.time_s)))) return false;
+  }
+  return true;
 }
 
 bool any_term(const std::array<AccelTerms, 3>& accel) {
@@ -175,10 +189,10 @@ bool NavOptions::IsValid(std::string* why) const {
                   std::string(quantity_name(axes[a].coefficients.quantity)) +
                   "); the navigation error needs angular-rate coefficients");
     }
-    for (double v : {t.q_rad, t.n_rad_sqrt_s, t.b_rad_s, t.k_rad_s_sqrt_s, t.r_rad_s2, t.gm_sigma_rad_s, t.bias_rad_s}) {
+    for (double v : values_of(t)) {
       if (!std::isfinite(v)) return fail(std::string("a noise coefficient of axis ") + axis + " is not finite");
     }
-    if (t.gm_sigma_rad_s > 0.0 && !(t.gm_time_s > 0.0 && std::isfinite(t.gm_time_s))) {
+    if (!valid_gauss_markov(t.gauss_markov)) {
       return fail(std::string("axis ") + axis + ": a Gauss-Markov term needs a positive correlation time");
     }
     const AccelTerms at = terms_of(accel_axes[a]);
@@ -189,7 +203,7 @@ bool NavOptions::IsValid(std::string* why) const {
     for (double v : values_of(at)) {
       if (!std::isfinite(v)) return fail(std::string("a noise coefficient of accelerometer axis ") + axis + " is not finite");
     }
-    if (at.gm_sigma_m_s2 > 0.0 && !(at.gm_time_s > 0.0 && std::isfinite(at.gm_time_s))) {
+    if (!valid_gauss_markov(at.gauss_markov)) {
       return fail(std::string("accelerometer axis ") + axis + ": a Gauss-Markov term needs a positive correlation time");
     }
   }

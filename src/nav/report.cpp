@@ -27,6 +27,13 @@ nlohmann::json scaled(const std::vector<double>& v, double factor) {
   return a;
 }
 
+// Every Gauss-Markov term, [{sigma_<unit>, time_s}], by correlation time.
+nlohmann::json gauss_markov_json(const std::vector<GaussMarkovNoise>& terms, double factor, const char* sigma_key) {
+  nlohmann::json a = nlohmann::json::array();
+  for (const auto& g : terms) a.push_back({{sigma_key, g.sigma * factor}, {"time_s", g.time_s}});
+  return a;
+}
+
 nlohmann::json axis_json(const GyroTerms& t, int a) {
   const char* names[] = {"x", "y", "z"};
   const char* dirs[] = {"north", "east", "down"};
@@ -37,8 +44,7 @@ nlohmann::json axis_json(const GyroTerms& t, int a) {
           {"B_deg_s", t.b_rad_s * kDeg},
           {"K_deg_s_sqrt_s", t.k_rad_s_sqrt_s * kDeg},
           {"R_deg_s2", t.r_rad_s2 * kDeg},
-          {"gm_sigma_deg_s", t.gm_sigma_rad_s * kDeg},
-          {"gm_time_s", t.gm_time_s},
+          {"gauss_markov", gauss_markov_json(t.gauss_markov, kDeg, "sigma_deg_s")},
           {"bias_deg_s", t.bias_rad_s * kDeg},
           {"customary",
            {{"Q_arcsec", t.q_rad / units::arcsec_to_rad},
@@ -79,8 +85,7 @@ nlohmann::json accel_axis_json(const AccelTerms& t, int a) {
           {"B_m_s2", t.b_m_s2},
           {"K_m_s2_sqrt_s", t.k_m_s2_sqrt_s},
           {"R_m_s3", t.r_m_s3},
-          {"gm_sigma_m_s2", t.gm_sigma_m_s2},
-          {"gm_time_s", t.gm_time_s},
+          {"gauss_markov", gauss_markov_json(t.gauss_markov, 1.0, "sigma_m_s2")},
           {"bias_m_s2", t.bias_m_s2},
           {"customary",
            {{"N_m_s_sqrt_h", t.n_m_s_sqrt_s * units::sqrt_h_to_sqrt_s},
@@ -91,7 +96,7 @@ nlohmann::json accel_axis_json(const AccelTerms& t, int a) {
 
 bool has_accelerometers(const NavResult& r) {
   for (const AccelTerms& t : r.accel_terms) {
-    for (double v : {t.q_m_s, t.n_m_s_sqrt_s, t.b_m_s2, t.k_m_s2_sqrt_s, t.r_m_s3, t.gm_sigma_m_s2, t.bias_m_s2}) {
+    for (double v : {t.q_m_s, t.n_m_s_sqrt_s, t.b_m_s2, t.k_m_s2_sqrt_s, t.r_m_s3, gauss_markov_rss(t.gauss_markov), t.bias_m_s2}) {
       if (v != 0.0) return true;
     }
   }
@@ -262,7 +267,7 @@ std::string report_table(const NavResult& r) {
            num(g.b_rad_s * kDeg) + " deg/s, K " + num(g.k_rad_s_sqrt_s * kDeg) + " deg/s/sqrt(s), Q " +
            num(g.q_rad * kDeg) + " deg, R " + num(g.r_rad_s2 * kDeg) + " deg/s^2, bias " +
            num(g.bias_rad_s * kDeg) + " deg/s";
-    if (g.gm_sigma_rad_s > 0) out += ", GM " + num(g.gm_sigma_rad_s * kDeg) + " deg/s, " + num(g.gm_time_s) + " s";
+    for (const auto& gm : g.gauss_markov) out += ", GM " + num(gm.sigma * kDeg) + " deg/s, " + num(gm.time_s) + " s";
     out += "\n";
   }
   for (int a = 0; has_accelerometers(r) && a < 3; ++a) {
@@ -271,7 +276,7 @@ std::string report_table(const NavResult& r) {
     out += std::string("# accel ") + names[a] + ": N " + num(f.n_m_s_sqrt_s) + " m/s/sqrt(s), B " + num(f.b_m_s2) +
            " m/s^2, K " + num(f.k_m_s2_sqrt_s) + " m/s^2/sqrt(s), Q " + num(f.q_m_s) + " m/s, R " + num(f.r_m_s3) +
            " m/s^3, bias " + num(f.bias_m_s2) + " m/s^2";
-    if (f.gm_sigma_m_s2 > 0) out += ", GM " + num(f.gm_sigma_m_s2) + " m/s^2, " + num(f.gm_time_s) + " s";
+    for (const auto& gm : f.gauss_markov) out += ", GM " + num(gm.sigma) + " m/s^2, " + num(gm.time_s) + " s";
     out += "\n";
   }
   for (const auto& n : r.notes) out += "# note: " + n + "\n";
@@ -386,7 +391,7 @@ GyroAxisNoise axis_from_coefficients(const AxisCoefficients& c, const Unit& unit
     GaussMarkovTerm gm;
     gm.sigma = given(c.gm_sigma * unit.to_si);
     gm.correlation_time_s = given(c.gm_tau_s);
-    a.coefficients.gauss_markov = gm;
+    a.coefficients.gauss_markov = {gm};
   }
   return a;
 }
@@ -443,20 +448,38 @@ NoiseCoefficients coefficients_from_fit_json(const nlohmann::json& doc, const st
   read("B", c.bias_instability);
   read("K", c.rate_random_walk);
   read("R", c.rate_ramp);
-  if (terms.contains("GM") && terms["GM"].is_object() && terms["GM"].contains("sigma") &&
-      terms["GM"].contains("correlation_time_s")) {
-    const auto& gm = terms["GM"];
-    GaussMarkovTerm g;
-    const auto& s = gm["sigma"];
-    const auto& tc = gm["correlation_time_s"];
-    if (s.value("identified", false) && tc.value("identified", false) && s["value"].is_number() &&
-        tc["value"].is_number()) {
-      g.sigma.value = s["value"].get<double>() * unit.to_si;
-      g.sigma.identified = true;
-      g.correlation_time_s.value = tc["value"].get<double>();
-      g.correlation_time_s.identified = true;
-      c.gauss_markov = g;
+  // terms.GM: a list of {sigma, correlation_time_s} by correlation time (every GM term of a gmwm
+  // fit; one for wls). A single object is the shape of fit documents before the list.
+  if (terms.contains("GM")) {
+    const nlohmann::json& list = terms["GM"];
+    if (!list.is_array() && !list.is_object()) {
+      throw InputError(source + ": field 'terms.GM' must be a list of {sigma, correlation_time_s}");
     }
+    const nlohmann::json items = list.is_array() ? list : nlohmann::json::array({list});
+    for (const auto& gm : items) {
+      if (!gm.is_object() || !gm.contains("sigma") || !gm.contains("correlation_time_s")) continue;  // not fitted
+      const auto& s = gm["sigma"];
+      const auto& tc = gm["correlation_time_s"];
+      if (!s.is_object() || !tc.is_object()) {
+        throw InputError(source + ": terms.GM: sigma and correlation_time_s must be {value, identified} objects");
+      }
+      if (s.value("identified", false) && tc.value("identified", false) && s["value"].is_number() &&
+          tc["value"].is_number()) {
+        GaussMarkovTerm g;
+        g.sigma.value = s["value"].get<double>() * unit.to_si;
+        g.sigma.identified = true;
+        g.correlation_time_s.value = tc["value"].get<double>();
+        g.correlation_time_s.identified = true;
+        if (!(std::isfinite(g.sigma.value) && g.sigma.value > 0.0 && std::isfinite(g.correlation_time_s.value) &&
+              g.correlation_time_s.value > 0.0)) {
+          throw InputError(source + ": terms.GM: sigma and correlation_time_s must be positive and finite");
+        }
+        c.gauss_markov.push_back(g);
+      }
+    }
+    std::sort(c.gauss_markov.begin(), c.gauss_markov.end(), [](const GaussMarkovTerm& a, const GaussMarkovTerm& b) {
+      return a.correlation_time_s.value < b.correlation_time_s.value;
+    });
   }
   return c;
 }

@@ -16,7 +16,7 @@ GyroTerms only(const GyroTerms& t, int j) {
     case 2: o.b_rad_s = t.b_rad_s; break;
     case 3: o.k_rad_s_sqrt_s = t.k_rad_s_sqrt_s; break;
     case 4: o.r_rad_s2 = t.r_rad_s2; break;
-    case 5: o.gm_sigma_rad_s = t.gm_sigma_rad_s; o.gm_time_s = t.gm_time_s; break;
+    case 5: o.gauss_markov = t.gauss_markov; break;
     default: o.bias_rad_s = t.bias_rad_s; break;
   }
   return o;
@@ -30,7 +30,7 @@ AccelTerms only(const AccelTerms& t, int j) {
     case 2: o.b_m_s2 = t.b_m_s2; break;
     case 3: o.k_m_s2_sqrt_s = t.k_m_s2_sqrt_s; break;
     case 4: o.r_m_s3 = t.r_m_s3; break;
-    case 5: o.gm_sigma_m_s2 = t.gm_sigma_m_s2; o.gm_time_s = t.gm_time_s; break;
+    case 5: o.gauss_markov = t.gauss_markov; break;
     default: o.bias_m_s2 = t.bias_m_s2; break;
   }
   return o;
@@ -38,7 +38,7 @@ AccelTerms only(const AccelTerms& t, int j) {
 
 
 bool any(const SensorTerms& t) {
-  return t.q != 0 || t.n != 0 || t.b != 0 || t.k != 0 || t.r != 0 || t.gm_sigma != 0 || t.bias != 0;
+  return t.q != 0 || t.n != 0 || t.b != 0 || t.k != 0 || t.r != 0 || gauss_markov_rss(t.gauss_markov) != 0 || t.bias != 0;
 }
 
 }  // namespace

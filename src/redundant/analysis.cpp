@@ -318,7 +318,7 @@ Analysis analyze_unit(const Geometry& geometry, std::span<const SensorModel> sen
   }
   if (!sensors.empty()) {
     bool extra = false;
-    for (const auto& s : sensors) extra = extra || s.coefficients.gauss_markov || s.coefficients.sinusoid;
+    for (const auto& s : sensors) extra = extra || !s.coefficients.gauss_markov.empty() || s.coefficients.sinusoid;
     if (extra) r.notes.push_back("Gauss-Markov and sinusoid terms of the sensors' models are not propagated to the fused axes");
   }
   if (!r.detectable) r.notes.push_back("3 sensors: no parity space, a fault cannot be detected");

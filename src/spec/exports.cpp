@@ -30,6 +30,30 @@ double gauss_markov_adev(double sigma, double correlation_time_s, double tau_s) 
   return std::sqrt(2.0 * sigma * sigma / x * bracket);
 }
 
+std::vector<std::string> not_carried(const NoiseCoefficients& c, std::string_view format) {
+  std::vector<std::string> out;
+  const std::string unit = c.quantity == Quantity::acceleration ? "m/s^2" : "rad/s";
+  std::string terms;
+  int count = 0;
+  for (const auto& g : c.gauss_markov) {
+    if (!identified(g)) continue;
+    terms += fmt::format("{}sigma {:.4g} {}, T_c {:.4g} s", count > 0 ? "; " : "", g.sigma.value, unit,
+                         g.correlation_time_s.value);
+    ++count;
+  }
+  if (count > 0) {
+    out.push_back(fmt::format("{} Gauss-Markov term{} ({}) not carried: {} has no Gauss-Markov "
+                              "parameter; the Kalman-filter JSON export has one state per term",
+                              count, count > 1 ? "s" : "", terms, format));
+  }
+  if (c.sinusoid && c.sinusoid->amplitude.identified && c.sinusoid->amplitude.value > 0.0) {
+    out.push_back(fmt::format("sinusoid (amplitude {:.4g} {}, {:.4g} Hz) not carried: {} has no "
+                              "sinusoid parameter",
+                              c.sinusoid->amplitude.value, unit, c.sinusoid->frequency_hz.value, format));
+  }
+  return out;
+}
+
 namespace {
 
 void check_rate(double rate_hz, std::string_view what) {
@@ -105,6 +129,7 @@ void sensor_block(std::string& out, const NoiseCoefficients& c, const KalibrUnit
     out += "#   (bias instability B = " + readable(c.bias_instability.value) + " " + u.rate_unit +
            " is not a Kalibr parameter; see the Kalman-filter JSON export)\n";
   }
+  for (const auto& line : not_carried(c, "Kalibr")) out += "#   (" + line + ")\n";
   value_line(out, prefix + "_noise_density", c.random_walk, inflation, u.density_unit, 'N');
   value_line(out, prefix + "_random_walk", c.rate_random_walk, inflation, u.walk_unit, 'K');
 }
@@ -176,6 +201,21 @@ nlohmann::json coefficient_json(const Coefficient& c, const std::string& unit) {
   return j;
 }
 
+// The discrete first-order Gauss-Markov state of sigma (x) and T_c (s) at the sample period dt.
+void add_gauss_markov_state(nlohmann::json& b, double sigma, double tc, double dt, const std::string& x,
+                            const std::string& psd_walk) {
+  b["sigma"] = quantity_json(sigma, x);
+  b["correlation_time"] = quantity_json(tc, "s");
+  const bool full = std::isfinite(sigma) && std::isfinite(tc) && tc > 0.0;
+  const double nan = std::nan("");
+  const double phi = full ? std::exp(-dt / tc) : nan;
+  b["driving_psd"] = quantity_json(full ? 2.0 * sigma * sigma / tc : nan, psd_walk);
+  b["discrete_phi"] = quantity_json(phi, "1");
+  b["discrete_phi"]["formula"] = "exp(-dt / T_c)";
+  b["discrete_sigma"] = quantity_json(full ? sigma * std::sqrt(1.0 - phi * phi) : nan, x);
+  b["discrete_sigma"]["formula"] = "sigma sqrt(1 - phi^2)";
+}
+
 }  // namespace
 
 nlohmann::json kalman_parameters(const NoiseCoefficients& c, double rate_hz,
@@ -209,6 +249,13 @@ nlohmann::json kalman_parameters(const NoiseCoefficients& c, double rate_hz,
   j["conventions"] =
       "continuous white noise w(t) with E[w(t) w(t+s)] = psd * delta(s) (two-sided PSD, "
       "psd = N^2, as Kalibr's noise density squared); discrete values for the sample period dt";
+  // The filter's Gauss-Markov states, one per entry (bias_instability is the first of them,
+  // kept in its place for the readers of one-state files, not an extra state).
+  j["gauss_markov_states"] = nlohmann::json::array();
+  j["gauss_markov_states_note"] =
+      "one first-order Gauss-Markov state per entry, ordered by correlation time: every term the "
+      "fit identified, else the one matched to the bias-instability floor; bias_instability "
+      "repeats the first entry (it is not a further state)";
 
   {
     nlohmann::json w;
@@ -232,11 +279,26 @@ nlohmann::json kalman_parameters(const NoiseCoefficients& c, double rate_hz,
     double tc = std::nan("");
     std::string method;
     std::string note;
-    if (c.gauss_markov && c.gauss_markov->sigma.identified &&
-        c.gauss_markov->correlation_time_s.identified) {
-      sigma = c.gauss_markov->sigma.value;
-      tc = c.gauss_markov->correlation_time_s.value;
-      method = "fitted: the Gauss-Markov term identified by the fit, used as is";
+    std::vector<GaussMarkovTerm> fitted;
+    for (const auto& g : c.gauss_markov) {
+      if (identified(g)) fitted.push_back(g);
+    }
+    if (!fitted.empty()) {
+      sigma = fitted.front().sigma.value;
+      tc = fitted.front().correlation_time_s.value;
+      method = fitted.size() == 1
+                   ? "fitted: the Gauss-Markov term identified by the fit, used as is"
+                   : fmt::format("fitted: the first (shortest correlation time) of the {} Gauss-Markov "
+                                 "terms identified by the fit; every one is a state of "
+                                 "gauss_markov_states",
+                                 fitted.size());
+      // One state per fitted term, by correlation time.
+      for (const auto& g : fitted) {
+        nlohmann::json s;
+        s["source"] = "fitted";
+        add_gauss_markov_state(s, g.sigma.value, g.correlation_time_s.value, dt, x, psd_walk);
+        j["gauss_markov_states"].push_back(std::move(s));
+      }
     } else if (bi.identified && bi.value > 0.0) {
       const double floor = std::sqrt(2.0 * std::numbers::ln2 / std::numbers::pi) * bi.value;
       sigma = floor / kGaussMarkovPeakRatio;
@@ -265,16 +327,13 @@ nlohmann::json kalman_parameters(const NoiseCoefficients& c, double rate_hz,
       note = "bias instability not identified: no Gauss-Markov state derived";
     }
     b["method"] = method.empty() ? nlohmann::json(nullptr) : nlohmann::json(method);
-    b["sigma"] = quantity_json(sigma, x);
-    b["correlation_time"] = quantity_json(tc, "s");
-    const bool full = std::isfinite(sigma) && std::isfinite(tc) && tc > 0.0;
-    const double nan = std::nan("");
-    const double phi = full ? std::exp(-dt / tc) : nan;
-    b["driving_psd"] = quantity_json(full ? 2.0 * sigma * sigma / tc : nan, psd_walk);
-    b["discrete_phi"] = quantity_json(phi, "1");
-    b["discrete_phi"]["formula"] = "exp(-dt / T_c)";
-    b["discrete_sigma"] = quantity_json(full ? sigma * std::sqrt(1.0 - phi * phi) : nan, x);
-    b["discrete_sigma"]["formula"] = "sigma sqrt(1 - phi^2)";
+    add_gauss_markov_state(b, sigma, tc, dt, x, psd_walk);
+    if (fitted.empty() && std::isfinite(sigma) && std::isfinite(tc) && tc > 0.0) {
+      nlohmann::json s;
+      s["source"] = "matched to the bias-instability floor";
+      add_gauss_markov_state(s, sigma, tc, dt, x, psd_walk);
+      j["gauss_markov_states"].push_back(std::move(s));
+    }
     if (!note.empty()) b["note"] = note;
     j["bias_instability"] = std::move(b);
   }

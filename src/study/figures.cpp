@@ -420,7 +420,8 @@ nlohmann::json build_figures(const nlohmann::json& doc) {
          {"title", "Allan deviation of " + name + " and its noise model"},
          {"caption", "Points: overlapping Allan deviation with " + ci_text(doc) +
                          " confidence bars. Black: the fitted model (paper eq. 5); dashed: each "
-                         "identified term's asymptote, labelled with its coefficient; dotted: "
+                         "identified term's asymptote, labelled with its coefficient, and each "
+                         "Gauss-Markov term's own curve (GM1, GM2, ... by correlation time); dotted: "
                          "datasheet limits."},
          {"x_label", "averaging time tau [s]"},
          {"y_label", "Allan deviation [" + ch["unit"].get<std::string>() + "]"},

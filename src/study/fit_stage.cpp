@@ -114,9 +114,12 @@ std::string fit_table(const Record& record, const fit::FitOptions& options,
                        cell(c.value / to_unit), cell(c.ci_low / to_unit),
                        cell(c.ci_high / to_unit), unit, c.identified ? "yes" : "no", cust);
   };
-  if (const auto& gm = r.coefficients.gauss_markov) {
-    extra_row("GMs", gm->sigma, f, unit_label(record));
-    extra_row("GMt", gm->correlation_time_s, 1.0, "s");
+  // One pair of rows per Gauss-Markov term, by correlation time (GMs/GMt, then GM2s/GM2t, ...).
+  for (std::size_t i = 0; i < r.coefficients.gauss_markov.size(); ++i) {
+    const auto& gm = r.coefficients.gauss_markov[i];
+    const std::string id = i == 0 ? "GM" : fmt::format("GM{}", i + 1);
+    extra_row((id + "s").c_str(), gm.sigma, f, unit_label(record));
+    extra_row((id + "t").c_str(), gm.correlation_time_s, 1.0, "s");
   }
   if (const auto& sin = r.coefficients.sinusoid) {
     extra_row("SINa", sin->amplitude, f, unit_label(record));

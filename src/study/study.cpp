@@ -91,9 +91,9 @@ nlohmann::json model_json(const Record& record, const Curve& oadev, const fit::F
       const double v = fit::coefficient(c, j).value;
       avar += v * v * fit::term_basis(j, tau);
     }
-    if (c.gauss_markov && c.gauss_markov->sigma.identified) {
-      const double g = gauss_markov_adev(c.gauss_markov->sigma.value,
-                                         c.gauss_markov->correlation_time_s.value, tau);
+    for (const auto& gm : c.gauss_markov) {
+      if (!identified(gm)) continue;
+      const double g = gauss_markov_adev(gm.sigma.value, gm.correlation_time_s.value, tau);
       avar += g * g;
     }
     total.push_back(std::sqrt(avar) / f);
@@ -122,8 +122,31 @@ nlohmann::json model_json(const Record& record, const Curve& oadev, const fit::F
         {"anchor", {{"tau_s", at}, {"adev", term_adev(j, coefficient.value, at) / f}}}};
     terms.push_back(std::move(term));
   }
+  // Each identified Gauss-Markov term's own curve (a bump, not an asymptote), anchored at its
+  // peak (tau = 1.8926 T_c); GM1, GM2, ... by correlation time.
+  int gm_index = 0;
+  for (const auto& gm : c.gauss_markov) {
+    if (!identified(gm)) continue;
+    ++gm_index;
+    const double sigma = gm.sigma.value, tc = gm.correlation_time_s.value;
+    nlohmann::json xs = nlohmann::json::array(), ys = nlohmann::json::array();
+    for (double tau : taus) {
+      const double y = gauss_markov_adev(sigma, tc, tau) / f;
+      if (y < dev_lo / 10.0 || y > dev_hi * 10.0) continue;
+      xs.push_back(tau);
+      ys.push_back(y);
+    }
+    const double at = std::clamp(kGaussMarkovPeakTau * tc, tau_lo, tau_hi);
+    terms.push_back({{"symbol", fmt::format("GM{}", gm_index)},
+                     {"label", fmt::format("GM{}: sigma = {} {}, T_c = {} s", gm_index, short_number(sigma / f),
+                                           unit_label(record), short_number(tc))},
+                     {"tau_s", std::move(xs)},
+                     {"adev", std::move(ys)},
+                     {"anchor", {{"tau_s", at}, {"adev", gauss_markov_adev(sigma, tc, at) / f}}}});
+  }
   return {{"unit", unit_label(record)},
-          {"what", "fitted Allan deviation (eq. 5) and each identified term's asymptote"},
+          {"what", "fitted Allan deviation (eq. 5 with every Gauss-Markov term), each identified power-law "
+                   "term's asymptote and each Gauss-Markov term's curve"},
           {"tau_s", taus},
           {"adev", total},
           {"terms", std::move(terms)}};
@@ -169,7 +192,7 @@ constexpr const char* kKalibrRule =
 std::optional<NoiseCoefficients> combine_axes(const std::vector<const ChannelStudy*>& axes) {
   if (axes.empty()) return std::nullopt;
   NoiseCoefficients out = axes.front()->fit->coefficients;
-  out.gauss_markov.reset();
+  out.gauss_markov.clear();
   out.sinusoid.reset();
   for (int j = 0; j < fit::kTermCount; ++j) {
     Coefficient best = fit::coefficient(axes.front()->fit->coefficients, j);
@@ -206,6 +229,16 @@ nlohmann::json kalibr_json(const Study& study) {
                                  gyros.size(), fmt::join(gyro_names, ", "), accels.size(),
                                  accels.empty() ? "" : " (" + fmt::format("{}", fmt::join(accel_names, ", ")) + ")");
   text += std::string("# rule: ") + kKalibrRule + "\n";
+  // What Kalibr has no field for, axis by axis (combine_axes drops it).
+  std::vector<std::string> dropped;
+  for (const auto* list : {&gyros, &accels}) {
+    for (const auto* a : *list) {
+      for (const auto& line : not_carried(a->fit->coefficients, "Kalibr")) {
+        dropped.push_back(a->record.name + ": " + line);
+        text += "# " + dropped.back() + "\n";
+      }
+    }
+  }
   text += kalibr_imu_yaml(*gyro, accel ? &*accel : nullptr, study.channels.front().record.rate_hz,
                           study.options.kalibr_inflation, study.options.kalibr_topic);
   return {{"written", true},
@@ -213,6 +246,7 @@ nlohmann::json kalibr_json(const Study& study) {
           {"gyro_axes", gyro_names},
           {"accelerometer_axes", accel_names},
           {"complete", !accels.empty()},
+          {"not_carried", dropped},
           {"text", text}};
 }
 

@@ -19,8 +19,8 @@ std::string channel_summary(const ChannelStudy& ch) {
     const auto& x = ch.fit->extras;
     std::string added;
     const auto& c = ch.fit->coefficients;
-    if (x.gauss_markov.selected && c.gauss_markov) {
-      added += fmt::format("Gauss-Markov (T_c {:.3g} s)", c.gauss_markov->correlation_time_s.value);
+    if (x.gauss_markov.selected && !c.gauss_markov.empty()) {
+      added += fmt::format("Gauss-Markov (T_c {:.3g} s)", c.gauss_markov.front().correlation_time_s.value);
     }
     if (x.sinusoid.selected && c.sinusoid) {
       added += fmt::format("{}sinusoid ({:.4g} Hz)", added.empty() ? "" : ", ", c.sinusoid->frequency_hz.value);

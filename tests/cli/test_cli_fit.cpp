@@ -69,7 +69,10 @@ TEST(CliFit, OptionalGaussMarkovAndSinusoidTerms) {
   const auto r = run_cli({"fit", file, "--units", "deg/s", "--terms", "Q,N,B,K,GM,SIN"});
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  const auto& gm = j["terms"]["GM"];
+  // terms.GM is a list by correlation time: the wls fit's one term.
+  ASSERT_TRUE(j["terms"]["GM"].is_array()) << j["terms"]["GM"];
+  ASSERT_EQ(j["terms"]["GM"].size(), 1u);
+  const auto& gm = j["terms"]["GM"][0];
   EXPECT_TRUE(gm["test"]["selected"].get<bool>()) << gm.dump();
   EXPECT_TRUE(gm["sigma"]["identified"].get<bool>());
   EXPECT_EQ(gm["sigma"]["unit"], "deg/s");
@@ -182,7 +185,8 @@ TEST(CliFit, AutomaticTermsAndTheirSwitch) {
   const auto r = test::run_cli(fit);
   ASSERT_EQ(r.exit_code, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
-  const auto& gm = j["terms"]["GM"];
+  ASSERT_TRUE(j["terms"]["GM"].is_array() && j["terms"]["GM"].size() == 1) << j["terms"];
+  const auto& gm = j["terms"]["GM"][0];
   const auto& sin = j["terms"]["SIN"];
   ASSERT_TRUE(gm["automatic"].is_string()) << gm;
   ASSERT_TRUE(sin["automatic"].is_string()) << sin;

@@ -207,6 +207,57 @@ TEST(GmwmFit, RecoversTheModelFromItsExactCurve) {
   EXPECT_LT(r.j_statistic, 1e-6);
 }
 
+// A fit stopped by its iteration limit reports no term as identified (the last iterate is no
+// estimate), says why and how to fix it; with the default limit the same curve converges.
+TEST(GmwmFit, NoConvergenceIdentifiesNothing) {
+  const double tau0 = 0.01;
+  const std::size_t n_phase = 360001;  // 1 h at 100 Hz
+  std::vector<std::size_t> ms;
+  for (std::size_t m = 1; 2 * m < n_phase; m *= 2) ms.push_back(m);
+  const auto avar = exact_avar(ms, tau0, 1.7e-4, 1e-5, {{2e-4, 3.7}, {1e-4, 43.0}});
+  GmwmOptions o;
+  parse_gmwm_terms("N,K,GM,GM", o);
+  o.max_iterations = 1;
+  const GmwmResult r = fit_gmwm(ms, avar, n_phase, tau0, o);
+  ASSERT_EQ(r.status, GmwmStatus::no_convergence) << r.message;
+  ASSERT_EQ(r.terms.size(), 4u);
+  for (const auto& t : r.terms) {
+    EXPECT_FALSE(t.magnitude.identified);
+    EXPECT_EQ(t.magnitude.value, 0.0);
+    EXPECT_NE(t.magnitude.note.find("did not converge"), std::string::npos) << t.magnitude.note;
+    EXPECT_NE(t.magnitude.note.find("fix:"), std::string::npos);
+  }
+  ASSERT_FALSE(r.warnings.empty());
+  o.max_iterations = 200;
+  EXPECT_EQ(fit_gmwm(ms, avar, n_phase, tau0, o).status, GmwmStatus::converged);
+  o.max_iterations = 0;
+  EXPECT_THROW(fit_gmwm(ms, avar, n_phase, tau0, o), InputError);
+}
+
+// A Gauss-Markov term whose correlation time is far beyond the record (1e5 s in 1 h) is a random
+// walk to the curve: its T_c cannot be read, so the term is reported not identified with the
+// reason (value 0), never with a T_c pulled from the curve's end.
+TEST(GmwmFit, CorrelationTimeBeyondTheRecordIsNotIdentified) {
+  const double tau0 = 0.01;
+  const std::size_t n_phase = 360001;  // 1 h at 100 Hz
+  std::vector<std::size_t> ms;
+  for (std::size_t m = 1; 2 * m < n_phase; m *= 2) ms.push_back(m);
+  const auto avar = exact_avar(ms, tau0, 1.7e-4, 0.0, {{1e-3, 1e5}});
+  GmwmOptions o;
+  parse_gmwm_terms("N,GM", o);
+  const GmwmResult r = fit_gmwm(ms, avar, n_phase, tau0, o);
+  ASSERT_EQ(r.terms.size(), 2u);
+  EXPECT_TRUE(r.terms[0].magnitude.identified) << r.terms[0].magnitude.note;
+  const auto& gm = r.terms[1];
+  EXPECT_FALSE(gm.magnitude.identified);
+  EXPECT_FALSE(gm.shape.identified);
+  EXPECT_EQ(gm.magnitude.value, 0.0);
+  const std::string& note = gm.shape.note;
+  EXPECT_TRUE(note.find("span") != std::string::npos || note.find("not significant") != std::string::npos ||
+              note.find("floor") != std::string::npos)
+      << note;
+}
+
 TEST(GmwmFit, TooManyTermsForTheScalesIsAnInputError) {
   std::vector<std::size_t> ms{1, 2, 4, 8, 16};
   const auto avar = exact_avar(ms, 0.01, 1e-3, 0.0, {});

@@ -117,9 +117,9 @@ AxisCheck check_axis(const std::vector<double>& rate, const std::string& name) {
   a.excluded = static_cast<int>(r.summary.excluded_taus.size());
   a.n = r.coefficients.random_walk.value;
   a.b = r.coefficients.bias_instability.value;
-  if (r.extras.gauss_markov.selected && r.coefficients.gauss_markov) {
+  if (r.extras.gauss_markov.selected && !r.coefficients.gauss_markov.empty()) {
     char buf[96];
-    std::snprintf(buf, sizeof buf, " GM(Tc %.3g s)", r.coefficients.gauss_markov->correlation_time_s.value);
+    std::snprintf(buf, sizeof buf, " GM(Tc %.3g s)", r.coefficients.gauss_markov.front().correlation_time_s.value);
     a.extras += buf;
   }
   if (r.extras.sinusoid.selected && r.coefficients.sinusoid) {

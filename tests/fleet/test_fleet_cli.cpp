@@ -179,6 +179,25 @@ TEST(FleetReport, FiguresShowTheFleetAndTheBrowserDrawsThem) {
 // fleet --nav: each gyro's navigation error at 1 h is what `imunoise nav --from` computes from
 // that sensor's fit document (the study's models, latitude and steps); the summary holds its
 // quantiles, the CSV a column per model, the report a table and a figure.
+// --method gmwm reaches every sensor's fit (the fit options are the fit command's).
+TEST(FleetCli, MethodGmwmReachesEverySensorsFit) {
+  const Fleet& fleet = Fleet::shared();
+  TempDir out_dir;
+  const std::string out = out_dir.file("out");
+  const auto r = run_cli(fleet.args(out, {"--method", "gmwm", "--terms", "N,K"}));
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(slurp(out + "/fleet.json"));
+  int gmwm = 0;
+  for (const auto& s : doc["sensors"]) {
+    if (s["fit"].is_null()) continue;  // the file that is not a record
+    EXPECT_EQ(s["fit"]["method"], "gmwm");
+    EXPECT_EQ(s["fit"]["gmwm"]["model"], "N+K");
+    ++gmwm;
+  }
+  EXPECT_EQ(gmwm, 7);
+  EXPECT_EQ(doc["summary"]["coefficients"]["N"]["n_identified"], 7);
+}
+
 TEST(FleetCli, NavigationErrorPerSensorAndItsDistribution) {
   const Fleet& fleet = Fleet::shared();
   TempDir out_dir;

@@ -108,7 +108,7 @@ TEST(NavAccelCovariance, EqualsClosedFormPerTerm) {
          GaussMarkovTerm gm;
          gm.sigma = present(0.1 * kMg);
          gm.correlation_time_s = present(200.0);
-         a.coefficients.gauss_markov = gm;
+         a.coefficients.gauss_markov = {gm};
        }},
   };
   for (const Case& c : cases) {

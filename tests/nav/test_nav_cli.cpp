@@ -76,6 +76,40 @@ TEST(NavCli, FromFitJsonPerAxisAndForAll) {
   EXPECT_DOUBLE_EQ(doc["axes"][0]["B_deg_s"].get<double>(), 5.9e-4);
 }
 
+// terms.GM is a list by correlation time (every GM term of a gmwm fit): each one reaches the
+// navigation error; the single object of older fit documents is still read.
+TEST(NavCli, FromAFitDocumentWithSeveralGaussMarkovTerms) {
+  auto gm = [](double sigma, double tc) {
+    return nlohmann::json{{"sigma", {{"value", sigma}, {"unit", "deg/s"}, {"identified", true}}},
+                          {"correlation_time_s", {{"value", tc}, {"unit", "s"}, {"identified", true}}}};
+  };
+  auto with = [&](const nlohmann::json& list) {
+    auto doc = nlohmann::json::parse(fit_document(8.9e-4, 0.0, 0.0));
+    doc["terms"]["GM"] = list;
+    return doc.dump();
+  };
+  TempDir dir;
+  const std::string both = dir.write("both.json", with(nlohmann::json::array({gm(2e-3, 600.0), gm(1e-3, 30.0)})));
+  const std::string first = dir.write("first.json", with(nlohmann::json::array({gm(1e-3, 30.0)})));
+  const std::string old = dir.write("old.json", with(gm(1e-3, 30.0)));
+  auto radial = [](const nlohmann::json& doc) { return doc["models"][0]["radial_m"].back().get<double>(); };
+  const CliResult rb = run_cli({"nav", "--from", both, "--model", "covariance", "--format", "json"});
+  ASSERT_EQ(rb.exit_code, 0) << rb.err;
+  const auto db = nlohmann::json::parse(rb.out);
+  const auto& listed = db["axes"][1]["gauss_markov"];
+  ASSERT_EQ(listed.size(), 2u) << db["axes"][1];
+  EXPECT_DOUBLE_EQ(listed[0]["time_s"].get<double>(), 30.0);  // sorted by correlation time
+  EXPECT_DOUBLE_EQ(listed[1]["sigma_deg_s"].get<double>(), 2e-3);
+  const CliResult rf = run_cli({"nav", "--from", first, "--model", "covariance", "--format", "json"});
+  ASSERT_EQ(rf.exit_code, 0) << rf.err;
+  const auto df = nlohmann::json::parse(rf.out);
+  EXPECT_GT(radial(db), 1.2 * radial(df));
+  const CliResult ro = run_cli({"nav", "--from", old, "--model", "covariance", "--format", "json"});
+  ASSERT_EQ(ro.exit_code, 0) << ro.err;
+  EXPECT_DOUBLE_EQ(radial(nlohmann::json::parse(ro.out)), radial(df));
+  expect_error({"nav", "--from", dir.write("bad.json", with(nlohmann::json("GM"))), "--format", "json"}, "terms.GM");
+}
+
 TEST(NavCli, FromTheOutputOfFit) {
   TempDir dir;
   const std::string rec = dir.file("gyro.txt");

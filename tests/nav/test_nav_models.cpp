@@ -139,7 +139,7 @@ TEST(NavCovariance, EqualsClosedFormPerTerm) {
          GaussMarkovTerm gm;
          gm.sigma = present(1e-3 * kDeg);
          gm.correlation_time_s = present(300.0);
-         a.coefficients.gauss_markov = gm;
+         a.coefficients.gauss_markov = {gm};
        }},
   };
   for (const Case& c : cases) {
@@ -204,7 +204,7 @@ TEST(NavCovariance, DoublingEqualsStepByStepPropagation) {
     a.coefficients.rate_random_walk = present(0.15e-4 * kDeg);
     a.bias_rad_s = 1e-6;
   }
-  o.axes[1].coefficients.gauss_markov = GaussMarkovTerm{present(1e-5), present(300.0)};
+  o.axes[1].coefficients.gauss_markov = {GaussMarkovTerm{present(1e-5), present(300.0)}};
   o.models = {Model::covariance};
   const NavResult fast = navigation_error(o);
   o.covariance_per_step = true;
@@ -212,6 +212,34 @@ TEST(NavCovariance, DoublingEqualsStepByStepPropagation) {
   for (std::size_t i = 1; i < fast.t_s.size(); ++i) {
     EXPECT_NEAR(fast.models[0].radial_m[i] / slow.models[0].radial_m[i], 1.0, 1e-11);
   }
+}
+
+// Every Gauss-Markov term of an axis (a gmwm fit may have several) reaches the model: the error
+// model is linear in independent noises, so two terms add in variance exactly; a model that took
+// only the first term would give the first term's error alone.
+TEST(NavCovariance, EveryGaussMarkovTermAddsInVariance) {
+  const GaussMarkovTerm fast{present(1e-3 * kDeg), present(30.0)};
+  const GaussMarkovTerm slow{present(2e-3 * kDeg), present(600.0)};
+  auto run = [](std::vector<GaussMarkovTerm> terms, Model model) {
+    NavOptions o = east_only(model);
+    o.step_s = 300.0;
+    o.axes[1].coefficients.gauss_markov = std::move(terms);
+    return navigation_error(o).models.front();
+  };
+  for (Model model : {Model::covariance, Model::schuler}) {
+    const ModelSeries one = run({fast}, model), other = run({slow}, model), both = run({fast, slow}, model);
+    for (std::size_t i = 1; i < both.t_s.size(); ++i) {
+      const double sum = one.north_m[i] * one.north_m[i] + other.north_m[i] * other.north_m[i];
+      EXPECT_NEAR(both.north_m[i] * both.north_m[i] / sum, 1.0, 1e-9) << model_name(model) << " t = " << both.t_s[i];
+    }
+    EXPECT_GT(both.north_m.back(), 1.5 * one.north_m.back()) << model_name(model);
+  }
+  // The document lists both, by correlation time.
+  NavOptions o = east_only(Model::covariance);
+  o.axes[1].coefficients.gauss_markov = {fast, slow};
+  const NavResult r = navigation_error(o);
+  ASSERT_EQ(r.terms[1].gauss_markov.size(), 2u);
+  EXPECT_EQ(r.terms[1].gauss_markov[1].time_s, 600.0);
 }
 
 // --- closed forms: limits and the switch to power series ------------------------------------

@@ -72,6 +72,19 @@ void expect_agreement(const NavOptions& o) {
 
 TEST(NavMonteCarlo, AgreesWithCovarianceWithinSamplingError) { expect_agreement(tg100(300)); }
 
+// Two Gauss-Markov terms on every axis (a gmwm fit): the simulator's channel has one, the second
+// is simulated as its own process and summed. The slow term (2e-3 deg/s, 600 s) dominates the
+// 1 h error, so a Monte Carlo that dropped it would sit far below the covariance model (>> 4 se).
+TEST(NavMonteCarlo, EveryGaussMarkovTermIsSimulated) {
+  NavOptions o = tg100(300);
+  for (auto& a : o.axes) {
+    a.coefficients.bias_instability = {};
+    a.coefficients.gauss_markov = {GaussMarkovTerm{present(1e-3 * kDeg), present(30.0)},
+                                   GaussMarkovTerm{present(2e-3 * kDeg), present(600.0)}};
+  }
+  expect_agreement(o);
+}
+
 TEST(SlowNavMonteCarlo, AgreesWithCovarianceWithinSamplingError2000Runs) { expect_agreement(tg100(2000)); }
 
 TEST(SlowNavMonteCarlo, AgreesWithoutEarthRateAtSixHours) {

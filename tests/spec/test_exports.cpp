@@ -220,7 +220,7 @@ TEST(Kalman, FloorTauFittedGaussMarkovAndMissingTerms) {
   expect_rel(given["bias_instability"]["correlation_time"]["value"].get<double>(),
              50.0 / kGaussMarkovPeakTau);
 
-  c.gauss_markov = GaussMarkovTerm{coefficient(1e-4), coefficient(30.0)};
+  c.gauss_markov = {GaussMarkovTerm{coefficient(1e-4), coefficient(30.0)}};
   const auto fitted = kalman_parameters(c, 200.0);
   EXPECT_EQ(fitted["bias_instability"]["sigma"]["value"].get<double>(), 1e-4);
   EXPECT_EQ(fitted["bias_instability"]["correlation_time"]["value"].get<double>(), 30.0);
@@ -243,6 +243,38 @@ TEST(Kalman, FloorTauFittedGaussMarkovAndMissingTerms) {
 
   EXPECT_THROW((void)kalman_parameters(c, -1.0), InputError);
   EXPECT_THROW((void)kalman_parameters(c, 200.0, 0.0), InputError);
+}
+
+// Several Gauss-Markov terms (a gmwm fit): one Kalman-filter state each, in the fit's order (by
+// T_c), bias_instability the first; a term not identified gives no state. Kalibr cannot carry
+// them: its file says so, naming each term, and not_carried says the same for the warnings.
+TEST(Kalman, OneStatePerGaussMarkovTermAndKalibrSaysWhatItDrops) {
+  auto c = gyro1();
+  Coefficient dropped;  // a term the fit reported but did not identify
+  c.gauss_markov = {GaussMarkovTerm{coefficient(1e-4), coefficient(2.0)},
+                    GaussMarkovTerm{dropped, dropped},
+                    GaussMarkovTerm{coefficient(5e-5), coefficient(40.0)}};
+  const auto j = kalman_parameters(c, 200.0);
+  const auto& states = j["gauss_markov_states"];
+  ASSERT_EQ(states.size(), 2u) << j.dump(1);
+  EXPECT_EQ(states[0]["correlation_time"]["value"].get<double>(), 2.0);
+  EXPECT_EQ(states[1]["sigma"]["value"].get<double>(), 5e-5);
+  expect_rel(states[1]["discrete_phi"]["value"].get<double>(), std::exp(-0.005 / 40.0));
+  expect_rel(states[1]["driving_psd"]["value"].get<double>(), 2.0 * 5e-5 * 5e-5 / 40.0);
+  EXPECT_EQ(j["bias_instability"]["sigma"]["value"].get<double>(), 1e-4);
+  // Without fitted terms: the one matched to B is the only state.
+  const auto matched = kalman_parameters(gyro1(), 200.0);
+  ASSERT_EQ(matched["gauss_markov_states"].size(), 1u);
+  EXPECT_EQ(matched["gauss_markov_states"][0]["sigma"]["value"].get<double>(),
+            matched["bias_instability"]["sigma"]["value"].get<double>());
+
+  const auto lines = not_carried(c, "Kalibr");
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_NE(lines[0].find("2 Gauss-Markov terms"), std::string::npos) << lines[0];
+  EXPECT_NE(lines[0].find("T_c 40 s"), std::string::npos) << lines[0];
+  const std::string yaml = kalibr_imu_yaml(c, nullptr, 200.0, 1.0, "/imu0");
+  EXPECT_NE(yaml.find(lines[0]), std::string::npos) << yaml;
+  EXPECT_TRUE(not_carried(gyro1(), "Kalibr").empty());
 }
 
 }  // namespace

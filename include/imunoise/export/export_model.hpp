@@ -6,6 +6,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "imunoise/load/record.hpp"
@@ -25,6 +26,9 @@ struct SensorModel {
   NoiseCoefficients coefficients;  ///< per term, the axis with the largest value (SI)
   std::string channels;            ///< "gyro_x gyro_y gyro_z", for the files' comments
   std::string selection;           ///< how the value was chosen, e.g. "largest of 3 axes"
+  /// The axes it was made from, as fitted: what the formats cannot carry (Gauss-Markov,
+  /// sinusoid) is said from these (not_carried).
+  std::vector<AxisFit> axes;
 };
 
 struct ExportModel {
@@ -54,6 +58,12 @@ SensorModel combine_axes(std::span<const AxisFit> axes);
 /// or inflation.
 ExportModel make_export_model(std::span<const AxisFit> fits, double rate_hz, double inflation,
                               std::string source);
+
+/// One sentence per axis and kind of term that the filter formats have no field for (every
+/// identified Gauss-Markov term, the sinusoid), "gyro_x: 2 Gauss-Markov terms (...) not
+/// carried: <format> has no ...": written as comments in each file and as warnings by the
+/// command line. Empty when the model has none.
+std::vector<std::string> not_carried(const ExportModel& model, std::string_view format);
 
 /// Throws InputError naming `target` for a non-positive rate or inflation, or when neither
 /// sensor is present.

@@ -30,6 +30,13 @@ struct RecordInfo {
 /// SIN; InputError naming an unknown or empty term.
 void parse_terms(std::string_view list, FitOptions& options);
 
+/// The --terms text shared by the command line and Python when the user gives none.
+inline constexpr std::string_view kDefaultTerms = "Q,N,B,K";
+
+/// The terms of options.method from the user's list: gmwm takes parse_gmwm_terms (the
+/// default list kDefaultTerms means "auto": WVIC selection), the others parse_terms.
+void parse_method_terms(std::string_view list, FitOptions& options);
+
 /// "none", "aic" or "bic"; InputError otherwise.
 Selection parse_selection(std::string_view name);
 
@@ -42,8 +49,9 @@ const CustomaryUnit& customary_unit(int term);
 
 /// The JSON document of the contract (docs/fit.md): unit, method, level, source, rate_hz,
 /// n_samples, terms{Q..R: value, unit, ci_low, ci_high, identified, fitted, estimate, note,
-/// dominates_tau_s, customary}, and when requested GM{sigma, correlation_time_s, test} and
-/// SIN{amplitude, frequency_hz, test}, paper{...}, diagnostics{...}. Values in the record's unit;
+/// dominates_tau_s, customary}, and when fitted GM: a list of {sigma, correlation_time_s, ...}
+/// ordered by correlation time (wls: one term, with its test; gmwm: every GM term) and
+/// SIN{amplitude, frequency_hz, test}, paper{...}, diagnostics{...}, gmwm{...} (method gmwm). Values in the record's unit;
 /// absent numbers (eqs. 1-2 without N or K, non-finite bounds) are null, never NaN.
 nlohmann::json report_json(const RecordInfo& record, const FitOptions& options,
                            const FitResult& result);

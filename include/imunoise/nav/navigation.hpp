@@ -56,6 +56,16 @@ struct GyroAxisNoise {
   double bias_rad_s = 0.0;  ///< constant drift (rad/s), sign irrelevant: enters as RMS |bias|
 };
 
+/// One first-order Gauss-Markov rate noise: stationary sigma (the sensor's SI rate unit: rad/s
+/// for a gyro, m/s^2 for an accelerometer) and correlation time (s).
+struct GaussMarkovNoise {
+  double sigma = 0.0;
+  double time_s = 0.0;
+};
+
+/// Root-sum-square of the sigmas (0: no Gauss-Markov term).
+double gauss_markov_rss(const std::vector<GaussMarkovNoise>& terms);
+
 /// The noise terms of one axis as plain SI numbers, after the choice of what is present.
 struct GyroTerms {
   double q_rad = 0.0;                ///< Q: angle (quantization) noise (rad)
@@ -63,8 +73,8 @@ struct GyroTerms {
   double b_rad_s = 0.0;              ///< B: bias instability (rad/s)
   double k_rad_s_sqrt_s = 0.0;       ///< K: rate random walk (rad/s/sqrt(s))
   double r_rad_s2 = 0.0;             ///< R: rate ramp (rad/s^2)
-  double gm_sigma_rad_s = 0.0;       ///< first-order Gauss-Markov sigma (rad/s)
-  double gm_time_s = 0.0;            ///< its correlation time (s)
+  /// Every identified first-order Gauss-Markov term (sigma in rad/s), by correlation time.
+  std::vector<GaussMarkovNoise> gauss_markov;
   double bias_rad_s = 0.0;           ///< constant drift (rad/s)
 };
 
@@ -89,8 +99,8 @@ struct AccelTerms {
   double b_m_s2 = 0.0;             ///< B: bias instability (m/s^2)
   double k_m_s2_sqrt_s = 0.0;      ///< K: acceleration random walk (m/s^2/sqrt(s))
   double r_m_s3 = 0.0;             ///< R: acceleration ramp (m/s^3)
-  double gm_sigma_m_s2 = 0.0;      ///< first-order Gauss-Markov sigma (m/s^2)
-  double gm_time_s = 0.0;          ///< its correlation time (s)
+  /// Every identified first-order Gauss-Markov term (sigma in m/s^2), by correlation time.
+  std::vector<GaussMarkovNoise> gauss_markov;
   double bias_m_s2 = 0.0;          ///< constant bias (m/s^2)
 };
 

@@ -16,6 +16,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "imunoise/noise_coefficients.hpp"
 
@@ -52,6 +53,9 @@ std::string kalibr_imu_yaml(const NoiseCoefficients& gyro, const NoiseCoefficien
 ///    with tau_floor = `bias_floor_tau_s` if given, else the bottom of the N + K model,
 ///    tau_opt = sqrt(3) N / K (paper eq. 1). Without either, T_c is null with a note.
 ///  - rate_random_walk: K; PSD K^2 (rad^2/s^3); discrete random-walk step sigma K sqrt(dt).
+///  - gauss_markov_states: the filter's Gauss-Markov states, one per entry, ordered by
+///    correlation time: every Gauss-Markov term the fit identified (gmwm may fit several;
+///    bias_instability then holds the first), else the one matched to B above (or none).
 /// @param rate_hz sample rate (Hz) for the discrete values; > 0
 /// @param bias_floor_tau_s averaging time (s) of the Allan floor, when known from the curve
 nlohmann::json kalman_parameters(const NoiseCoefficients& coefficients, double rate_hz,
@@ -61,6 +65,12 @@ nlohmann::json kalman_parameters(const NoiseCoefficients& coefficients, double r
 /// at averaging time tau (s): IEEE 952 Annex C,
 ///   sigma_A^2 = (2 sigma^2 T_c / tau) [1 - T_c/(2 tau) (3 - 4 e^{-tau/T_c} + e^{-2 tau/T_c})].
 double gauss_markov_adev(double sigma, double correlation_time_s, double tau_s);
+
+/// What a format without Gauss-Markov and sinusoid fields (Kalibr and the filter targets) drops
+/// from `c`: one sentence per kind of term (every identified GM term with sigma (SI) and T_c;
+/// the sinusoid), naming `format`. Empty when nothing is dropped. The exports write these as
+/// comments and the command line as warnings.
+std::vector<std::string> not_carried(const NoiseCoefficients& c, std::string_view format);
 
 /// Shortest decimal text that reads back to exactly `value`, always with a '.' in the mantissa
 /// ("3.0e-05", "200.0"); "nan"/"inf" for non-finite values.
