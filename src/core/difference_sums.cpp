@@ -14,6 +14,12 @@ namespace {
 // thread; each super-chunk writes its own partial sums, which are reduced in a fixed order,
 // so results are bitwise identical for any thread count.
 constexpr std::size_t kBlock = 4096;
+// Many near factors (every factor, or a dense grid) are mostly consecutive: the windows of one
+// factor overlap the next one's, so with blocks of 1024 starts (3 windows of 8 KB) a block's
+// windows stay in L1 across factors. Measured on `--taus all` (1e5 samples): 22 % less time;
+// for a few far-apart factors (octave) the larger block is 8 % faster, so it stays theirs.
+constexpr std::size_t kDenseBlock = 1024;
+constexpr std::size_t kDenseFactors = 256;
 constexpr std::size_t kMinChunk = 65536;
 constexpr std::size_t kMaxPartials = std::size_t{1} << 23;  // 64 MB of partial sums at most
 // Modified Allan: factors up to this run together over chunks of starts (their segments, at
@@ -91,11 +97,12 @@ DifferenceSums overlapping_difference_sums(std::span<const double> phase, int or
   const auto kernel = order == 2 ? sum_sq_second_difference : sum_sq_third_difference;
   const double* x = phase.data();
 
+  const std::size_t block = near.size() > kDenseFactors ? kDenseBlock : kBlock;
   auto run_chunk = [&](std::size_t c) {
     double* out = near_partial.data() + c * near.size();
     const std::size_t chunk_end = std::min(near_count, (c + 1) * chunk);
-    for (std::size_t k0 = c * chunk; k0 < chunk_end; k0 += kBlock) {
-      const std::size_t k1 = std::min(chunk_end, k0 + kBlock);
+    for (std::size_t k0 = c * chunk; k0 < chunk_end; k0 += block) {
+      const std::size_t k1 = std::min(chunk_end, k0 + block);
       for (std::size_t i = 0; i < near.size(); ++i) {
         const std::size_t end = std::min(k1, result.n[near[i]]);
         if (end > k0) out[i] += kernel(x + k0, factors[near[i]], end - k0);
