@@ -395,7 +395,20 @@ def bench_vs_allantools(ctx):
     return result
 
 
+def bench_gmwm(ctx):
+    hours, runs = ("1", "1") if ctx.quick else ("3", "3")
+    out, result = run_script(["bash", "bench/bench_gmwm.sh", hours, runs], ctx, env={"IMUNOISE_CLI": ctx.cli})
+    if out is None:
+        return result
+    rows = table_rows(out)
+    result["benchmarks"] = [
+        entry(f"fit_gmwm_auto/{hours}h", float(rows[0][1]), f"fit_wls/{hours}h", float(rows[0][3])),
+        entry(f"fit_gmwm_bootstrap100/{hours}h", float(rows[1][1]), f"fit_wls/{hours}h", float(rows[1][3]))]
+    return result
+
+
 SCRIPTS = [("bench_large_file.sh", bench_large_file), ("bench_fleet.sh", bench_fleet),
+           ("bench_gmwm.sh", bench_gmwm),
            ("bench_vs_numpy.py", bench_vs_numpy), ("bench_vs_allantools.py", bench_vs_allantools)]
 
 
