@@ -11,8 +11,9 @@ namespace imunoise {
 /// Every Allan/Hadamard-type estimator uses differences of order >= 2 of x, which cancel a
 /// constant rate, so any offset gives the same deviations; passing the mean keeps x small and
 /// the differences free of cancellation (a rate offset 1e4 times the noise changes results by
-/// less than 1e-12 relative). The running sum is compensated (Neumaier), so x[k] is the
-/// correctly rounded integral to within a few ulp for any N.
+/// less than 1e-12 relative). The running total is compensated (its roundings carried by an
+/// error-free two-sum, eight samples at a time), so x[k] is the integral to within a few ulp of
+/// itself plus a few ulp of a sum of at most eight samples, for any N.
 std::vector<double> phase_from_rate(std::span<const double> rate, double tau0_s, double offset);
 
 /// Mean of the samples with compensated summation (exact to a few ulp); 0 for an empty span.

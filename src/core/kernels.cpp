@@ -102,6 +102,36 @@ __attribute__((always_inline)) inline Vec8 broadcast_last(Vec8 v) {
 
 }  // namespace
 
+IMUNOISE_CLONES void compensated_prefix(const double* rate, std::size_t n, double offset,
+                                        double tau0_s, double& sum_io, double& compensation_io,
+                                        double* out) {
+  double sum = sum_io;
+  double compensation = compensation_io;
+  const Vec8 offsets = Vec8{} + offset;
+  std::size_t i = 0;
+  for (; i + kLanes <= n; i += kLanes) {
+    const Vec8 p = inclusive_scan(load(rate + i) - offsets);
+    const Vec8 carry = Vec8{} + sum;
+    const Vec8 total = carry + p;  // two-sum: total + error == carry + p exactly
+    const Vec8 p_part = total - carry;
+    const Vec8 error = (carry - (total - p_part)) + (p - p_part);
+    const Vec8 x = (total + (compensation + error)) * tau0_s;
+    __builtin_memcpy(out + i, &x, sizeof x);
+    sum = total[kLanes - 1];
+    compensation += error[kLanes - 1];
+  }
+  for (; i < n; ++i) {  // Neumaier's compensated addition
+    const double value = rate[i] - offset;
+    const double t = sum + value;
+    compensation += (sum >= 0 ? sum : -sum) >= (value >= 0 ? value : -value) ? (sum - t) + value
+                                                                             : (value - t) + sum;
+    sum = t;
+    out[i] = (sum + compensation) * tau0_s;
+  }
+  sum_io = sum;
+  compensation_io = compensation;
+}
+
 IMUNOISE_CLONES double sum_sq_window_second_difference(const double* x, std::size_t m,
                                                        std::size_t count, double* second_sum) {
   const double* x0 = x;

@@ -12,6 +12,14 @@ double sum_sq_second_difference(const double* x, std::size_t m, std::size_t coun
 /// sum_{k<count} (x[k+3m] - 3 x[k+2m] + 3 x[k+m] - x[k])^2
 double sum_sq_third_difference(const double* x, std::size_t m, std::size_t count);
 
+/// The phase of n rate samples: out[k] = tau0_s ((sum + compensation) after adding y[0..k] -
+/// offset), the running total carried in (sum, compensation) from call to call. Eight samples
+/// per step: their running sum within the step in a vector (three shift-adds), then the carried
+/// total added to all eight by an error-free two-sum whose errors join the compensation; the
+/// serial chain is one add per eight samples instead of Neumaier's add and branch per sample.
+void compensated_prefix(const double* rate, std::size_t n, double offset, double tau0_s,
+                        double& sum, double& compensation, double* out);
+
 /// Modified-Allan window sums: with e_i = x[i+2m] - 2 x[i+m] + x[i] and the window
 /// v_j = sum_{i=j}^{j+m-1} e_i, returns sum_{j<count} v_j^2 (count >= 1). Reads x[0 .. count-2+3m].
 /// v_0 is summed directly (O(m)); v_{j+1} = v_j + (e_{j+m} - e_j) then runs eight windows per

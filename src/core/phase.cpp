@@ -1,6 +1,9 @@
 #include "imunoise/phase.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include "kernels.hpp"
 
 namespace imunoise {
 namespace {
@@ -34,17 +37,16 @@ void PhaseIntegrator::push(std::span<const double> rate, std::vector<double>& ou
     out.push_back(0.0);
     started_ = true;
   }
-  const std::size_t base = out.size();
-  out.resize(base + rate.size());
-  double* dst = out.data() + base;
-  double sum = sum_;
-  double compensation = compensation_;
-  for (std::size_t i = 0; i < rate.size(); ++i) {
-    neumaier_add(sum, compensation, rate[i] - offset_);
-    dst[i] = (sum + compensation) * tau0_s_;
+  // Through a small buffer and insert, not resize: resize would zero the fresh pages once more
+  // before they are written (the reserved phase of a long record is its largest array).
+  out.reserve(out.size() + rate.size());
+  constexpr std::size_t kChunk = 2048;
+  double buffer[kChunk];
+  for (std::size_t i = 0; i < rate.size(); i += kChunk) {
+    const std::size_t n = std::min(kChunk, rate.size() - i);
+    detail::compensated_prefix(rate.data() + i, n, offset_, tau0_s_, sum_, compensation_, buffer);
+    out.insert(out.end(), buffer, buffer + n);
   }
-  sum_ = sum;
-  compensation_ = compensation;
 }
 
 std::vector<double> phase_from_rate(std::span<const double> rate, double tau0_s, double offset) {

@@ -16,6 +16,7 @@
 
 #include "imunoise/error.hpp"
 #include "imunoise/io/recording.hpp"
+#include "mapped_file.hpp"
 
 namespace imunoise::io::detail {
 
@@ -73,20 +74,6 @@ class ByteCursor {
   std::string where_;
   std::uint64_t base_ = 0;
   std::size_t pos_ = 0;
-};
-
-/// A whole file mapped read-only (an empty file maps to an empty span).
-class MappedFile {
- public:
-  explicit MappedFile(const std::filesystem::path& path);
-  ~MappedFile();
-  MappedFile(const MappedFile&) = delete;
-  MappedFile& operator=(const MappedFile&) = delete;
-  [[nodiscard]] std::span<const unsigned char> bytes() const { return {data_, size_}; }
-
- private:
-  const unsigned char* data_ = nullptr;
-  std::size_t size_ = 0;
 };
 
 /// An owned byte buffer left uninitialised (decompression overwrites all of it: zero-filling

@@ -37,32 +37,6 @@ std::uint32_t u32_at(const unsigned char* p, bool big) {
 
 }  // namespace
 
-MappedFile::MappedFile(const std::filesystem::path& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw InputError(path.string() + ": cannot open: " + std::strerror(errno));
-  struct stat st {};
-  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    ::close(fd);
-    throw InputError(path.string() + ": not a regular file; fix: give the path of a .bag, .mcap or .h5 file");
-  }
-  size_ = static_cast<std::size_t>(st.st_size);
-  if (size_ > 0) {
-    void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
-    if (p == MAP_FAILED) {
-      ::close(fd);
-      throw InputError(path.string() + ": cannot map the file: " + std::strerror(errno));
-    }
-    // Read front to back once: ask the kernel to read ahead aggressively.
-    ::madvise(p, size_, MADV_SEQUENTIAL | MADV_WILLNEED);
-    data_ = static_cast<const unsigned char*>(p);
-  }
-  ::close(fd);
-}
-
-MappedFile::~MappedFile() {
-  if (data_ != nullptr) ::munmap(const_cast<unsigned char*>(data_), size_);
-}
-
 // Uncompressed sizes are stated by the file: refuse absurd ones before allocating.
 static void check_size(std::uint64_t expected, std::size_t compressed, const std::string& where) {
   // bz2, lz4 and zstd cannot expand data by more than ~ 1:1000 (zstd's limit is higher only

@@ -340,7 +340,7 @@ Recording read_mcap_buffer(std::span<const unsigned char> bytes, std::string_vie
 }
 
 Recording read_mcap(const std::filesystem::path& path, std::string_view topic) {
-  const detail::MappedFile file(path);
+  const MappedFile file(path);
   return read_mcap_buffer(file.bytes(), path.string(), topic);
 }
 

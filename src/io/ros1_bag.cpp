@@ -311,7 +311,7 @@ Recording read_ros1_bag_buffer(std::span<const unsigned char> bytes, std::string
 }
 
 Recording read_ros1_bag(const std::filesystem::path& path, std::string_view topic) {
-  const detail::MappedFile file(path);
+  const MappedFile file(path);
   return read_ros1_bag_buffer(file.bytes(), path.string(), topic);
 }
 

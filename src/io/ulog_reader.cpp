@@ -545,7 +545,7 @@ Recording read_ulog_buffer(std::span<const unsigned char> bytes, std::string_vie
 }
 
 Recording read_ulog(const std::filesystem::path& path, std::string_view topic) {
-  const detail::MappedFile file(path);
+  const MappedFile file(path);
   return read_ulog_buffer(file.bytes(), path.string(), topic);
 }
 

@@ -1,7 +1,9 @@
 // The engine against the definitions, closed forms and its own invariances.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -187,6 +189,41 @@ TEST(Phase, IntegratorInChunksEqualsOnePass) {
     integrator.push(std::span(rate).subspan(begin, len), pieces);
   }
   EXPECT_EQ(pieces, whole);
+}
+
+// The integral against a compensated long-double running sum (64-bit mantissa: 2^11 times
+// finer than a double), on a record whose offset is not removed (a 1e3 rad/s bias under unit noise), so the
+// total grows to 1e9 and every addition rounds. The bound is the header's: a few ulp of the
+// value plus a few ulp of a sum of eight samples. Pieces of 999 (not a multiple of the eight
+// samples per step) stay within the same bound.
+TEST(Phase, IntegralIsWithinAFewUlpOfALongDoubleSum) {
+  auto rate = noise(1000003, 15, 1.0);
+  for (auto& r : rate) r += 1e3;
+  const double tau0 = 0.005;
+  const auto phase = phase_from_rate(rate, tau0, 0.0);
+  PhaseIntegrator integrator(tau0, 0.0);
+  std::vector<double> pieces;
+  for (std::size_t begin = 0; begin < rate.size(); begin += 999) {
+    integrator.push(std::span(rate).subspan(begin, std::min<std::size_t>(999, rate.size() - begin)), pieces);
+  }
+  ASSERT_EQ(phase.size(), rate.size() + 1);
+  ASSERT_EQ(pieces.size(), phase.size());
+  long double exact = 0.0L;  // Kahan-compensated in long double: its own error is ~1e-19 relative
+  long double carried = 0.0L;
+  double worst = 0.0;
+  double worst_pieces = 0.0;
+  for (std::size_t k = 1; k < phase.size(); ++k) {
+    const long double y = static_cast<long double>(rate[k - 1]) - carried;
+    const long double t = exact + y;
+    carried = (t - exact) - y;
+    exact = t;
+    const double value = static_cast<double>(exact * static_cast<long double>(tau0));
+    const double bound = 4.0 * std::numeric_limits<double>::epsilon() * (std::abs(value) + 8.0 * 1.1e3 * tau0);
+    worst = std::max(worst, std::abs(phase[k] - value) / bound);
+    worst_pieces = std::max(worst_pieces, std::abs(pieces[k] - value) / bound);
+  }
+  EXPECT_LE(worst, 1.0);
+  EXPECT_LE(worst_pieces, 1.0);
 }
 
 }  // namespace

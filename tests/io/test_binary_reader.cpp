@@ -262,6 +262,27 @@ TEST(BinaryReaderErrors, NanAndInfNameTheRecord) {
   }
 }
 
+// One native-order channel is decoded straight from the file's mapping by a plain loop: the
+// NaN far into the file is still named by its record, and a seek reads the slice after it.
+TEST(BinaryReaderErrors, NanInALongSingleChannelFileNamesTheRecord) {
+  const BinaryFormat format{SampleType::f64, ByteOrder::little};
+  std::string bytes;
+  for (std::size_t r = 0; r < 100'000; ++r) {
+    put_sample(bytes, r == 70'001 ? std::numeric_limits<double>::quiet_NaN() : static_cast<double>(r), format);
+  }
+  TempDir dir;
+  const auto path = dir.write("long.f64", bytes);
+  BinaryReadOptions options;
+  options.format = format;
+  expect_input_error([&] { read_binary_file(path, options); },
+                     {"long.f64:", "record 70001", "byte offset 560008", "NaN or Inf"});
+  BinaryReader reader(path, options);
+  reader.seek(70'002);
+  std::vector<double> slice(10);
+  ASSERT_EQ(reader.read(slice), 10u);
+  for (std::size_t i = 0; i < slice.size(); ++i) EXPECT_EQ(slice[i], static_cast<double>(70'002 + i));
+}
+
 TEST(BinaryReaderErrors, NanInAnUnselectedChannelIsTolerated) {
   const BinaryFormat format{SampleType::f64, ByteOrder::little};
   std::string bytes;

@@ -4,8 +4,10 @@
 // scaled (for integer ADC counts), and converted to double exactly (every f32, i16 and i32
 // value is a double; the only rounding is the one multiplication by `scale` when it is not 1).
 //
-// Files are streamed in chunks, so a record of any length can be processed in bounded memory
-// with BinaryReader::read; read_binary_file is the read-everything convenience.
+// Files are mapped and decoded straight from the mapping (no copy through read(); the pages
+// already decoded are dropped from the process, so resident memory stays bounded); streams,
+// and files that cannot be mapped, are read in chunks. read_binary_file is the
+// read-everything convenience.
 //
 // Problems are InputError naming the source and the record (0-based) and saying the fix:
 // empty input, a length that is not a whole number of records ("truncated: N trailing
@@ -23,6 +25,8 @@
 #include <vector>
 
 namespace imunoise::io {
+
+class MappedFile;
 
 enum class SampleType { f32, f64, i16, i32 };
 enum class ByteOrder { little, big };
@@ -65,6 +69,9 @@ class BinaryReader {
   /// record or empty input is reported by the read() that reaches the end. `source` names the
   /// stream in messages. The stream must outlive the reader.
   BinaryReader(std::istream& in, std::string_view source, const BinaryReadOptions& options);
+  ~BinaryReader();
+  BinaryReader(const BinaryReader&) = delete;
+  BinaryReader& operator=(const BinaryReader&) = delete;
 
   /// Fills `out` with the next samples of the selected channel; returns how many were written
   /// (< out.size() only at the end of input; 0 once everything has been read).
@@ -90,12 +97,13 @@ class BinaryReader {
 
   std::size_t record_bytes() const;
   std::size_t read_bytes(unsigned char* destination, std::size_t count);
-  void decode(std::size_t records, double* out) const;
+  void decode(const unsigned char* bytes, std::size_t records, double* out) const;
 
   std::string source_;
   BinaryReadOptions options_;
   std::unique_ptr<std::FILE, FileCloser> file_;
   std::istream* stream_ = nullptr;
+  std::unique_ptr<MappedFile> map_;  ///< the whole file, when it could be mapped
   std::optional<std::size_t> record_count_;
   std::size_t next_record_ = 0;
   bool at_end_ = false;

@@ -1,0 +1,53 @@
+#include "mapped_file.hpp"
+
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <string>
+
+#include "imunoise/error.hpp"
+
+namespace imunoise::io {
+
+MappedFile::MappedFile(const std::filesystem::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) throw InputError(path.string() + ": cannot open: " + std::strerror(errno));
+  struct stat st {};
+  if (::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd);
+    throw InputError(path.string() + ": not a regular file; fix: give the path of a regular file");
+  }
+  size_ = static_cast<std::size_t>(st.st_size);
+  if (size_ > 0) {
+    void* p = ::mmap(nullptr, size_, PROT_READ, MAP_PRIVATE, fd, 0);
+    if (p == MAP_FAILED) {
+      ::close(fd);
+      throw InputError(path.string() + ": cannot map the file: " + std::strerror(errno));
+    }
+    // Read front to back once: ask the kernel to read ahead aggressively.
+    ::madvise(p, size_, MADV_SEQUENTIAL);
+    ::madvise(p, size_, MADV_WILLNEED);
+    data_ = static_cast<const unsigned char*>(p);
+  }
+  ::close(fd);
+}
+
+MappedFile::~MappedFile() {
+  if (data_ != nullptr) ::munmap(const_cast<unsigned char*>(data_), size_);
+}
+
+void MappedFile::release_before(std::size_t end) {
+  static const auto page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+  const std::size_t upto = std::min(end, size_) / page * page;
+  if (upto > released_) {
+    ::madvise(const_cast<unsigned char*>(data_) + released_, upto - released_, MADV_DONTNEED);
+    released_ = upto;
+  }
+}
+
+}  // namespace imunoise::io
