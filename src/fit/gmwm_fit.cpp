@@ -325,14 +325,20 @@ Matrix initial_whitener(const GmwmCurve& c) {
   return whitener_of(to_matrix(basis.covariance(t5, {}), c.m.size()), c);
 }
 
-std::vector<std::vector<GmwmTerm>> auto_candidates(int max_gm) {
+// Every candidate: white noise, then 0..max_gm GM terms, each with and without K, and (when
+// asked) each again with one sinusoid: real sensors' curves carry bumps (a vibration, a
+// thermal cycle) that no sum of Gauss-Markov terms follows (docs/fit.md, unit 2's gyro z).
+std::vector<std::vector<GmwmTerm>> auto_candidates(int max_gm, bool with_sinusoid) {
   std::vector<std::vector<GmwmTerm>> out;
-  for (int g = 0; g <= max_gm; ++g) {
-    for (int with_k = 0; with_k < 2; ++with_k) {
-      std::vector<GmwmTerm> t{GmwmTerm::N};
-      if (with_k) t.push_back(GmwmTerm::K);
-      for (int i = 0; i < g; ++i) t.push_back(GmwmTerm::GM);
-      out.push_back(t);
+  for (int with_sin = 0; with_sin < (with_sinusoid ? 2 : 1); ++with_sin) {
+    for (int g = 0; g <= max_gm; ++g) {
+      for (int with_k = 0; with_k < 2; ++with_k) {
+        std::vector<GmwmTerm> t{GmwmTerm::N};
+        if (with_k) t.push_back(GmwmTerm::K);
+        for (int i = 0; i < g; ++i) t.push_back(GmwmTerm::GM);
+        if (with_sin) t.push_back(GmwmTerm::SIN);
+        out.push_back(t);
+      }
     }
   }
   return out;
@@ -380,7 +386,7 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
   // The candidates (or the one requested model) that the curve can carry.
   std::vector<std::vector<GmwmTerm>> candidates;
   if (options.automatic) {
-    for (auto& t : auto_candidates(options.max_gm)) {
+    for (auto& t : auto_candidates(options.max_gm, options.auto_sinusoid)) {
       if (static_cast<std::size_t>(Layout(t).parameters) < k) candidates.push_back(t);
     }
     if (candidates.empty()) {

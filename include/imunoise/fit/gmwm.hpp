@@ -107,10 +107,12 @@ class GmwmCovarianceBasis {
 struct GmwmOptions {
   /// The model: each entry one term; GM may repeat (N,K,GM,GM,GM). Ignored when automatic.
   std::vector<GmwmTerm> terms = {GmwmTerm::N, GmwmTerm::K, GmwmTerm::GM};
-  /// --terms auto: nested candidates (white + 0..max_gm GM, with and without K, Q and R)
-  /// ranked by WVIC; the table is in GmwmResult::candidates.
+  /// --terms auto: nested candidates (white + 0..max_gm GM, with and without K, and each
+  /// again with one sinusoid when auto_sinusoid) ranked by WVIC; the table is in
+  /// GmwmResult::candidates.
   bool automatic = false;
   int max_gm = 4;
+  bool auto_sinusoid = true;
   double level = 0.95;
   /// Re-computations of W at the fitted model (the first W is at the start model).
   int weight_iterations = 3;
