@@ -43,6 +43,9 @@ void add_fit_options(CLI::App& command, FitOptionsCli& options) {
                      "gmwm: parametric-bootstrap replicates for the intervals (0: delta method only)")
       ->check(CLI::Range(0, 100000));
   command.add_option("--seed", options.seed, "gmwm: seed of the bootstrap")->capture_default_str();
+  command.add_flag("--robust", options.robust,
+                   "gmwm: robust GMWM for records with outliers (Tukey-biweight wavelet variances, "
+                   "60 % Gaussian efficiency; docs/fit.md)");
   command.add_flag("--no-auto-terms", options.no_auto_terms,
                    "wls: do not try the Gauss-Markov and sinusoid terms automatically when chi2 "
                    "rejects the power-law model and the curve has a bump");
@@ -63,8 +66,12 @@ fit::FitOptions to_fit_options(const FitOptionsCli& options) {
   if (fo.method == fit::Method::gmwm) {
     fo.gmwm.bootstrap = options.bootstrap;
     fo.gmwm.seed = options.seed;
+    fo.gmwm.robust = options.robust;
   } else if (options.bootstrap > 0) {
     throw InputError("--bootstrap needs --method gmwm");
+  } else if (options.robust) {
+    throw InputError("--robust needs --method gmwm (the robust estimator is the robust GMWM); fix: add "
+                     "--method gmwm, or drop --robust");
   }
   // --terms keeps its wls default text when not given: gmwm then selects by WVIC.
   fit::parse_method_terms(options.terms, fo);

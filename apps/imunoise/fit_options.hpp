@@ -24,6 +24,7 @@ struct FitOptionsCli {
   bool no_auto_terms = false;
   int bootstrap = 0;       ///< gmwm: parametric bootstrap replicates
   std::uint64_t seed = 1;  ///< gmwm: bootstrap seed
+  bool robust = false;     ///< gmwm: robust (bounded-influence) wavelet variances
 };
 
 /// Registers --method --terms --level --selection --min-dominant-taus --gls --tau-min

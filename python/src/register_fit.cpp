@@ -65,7 +65,7 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
                      const std::string& selection, bool gls, int min_dominant_taus,
                      const std::string& spec_name, double tau_min, double tau_max,
                      bool keep_short_taus, bool exact_model, bool auto_terms, int bootstrap,
-                     std::uint64_t seed, const PreprocessArgs& preprocessing) {
+                     std::uint64_t seed, bool robust, const PreprocessArgs& preprocessing) {
   if (data.ndim() != 1) throw InputError("data must be a 1-D array, got " + std::to_string(data.ndim()) + "-D");
   checked_rate_hz(rate);
   const std::span<const double> samples(data.data(), static_cast<std::size_t>(data.shape(0)));
@@ -78,8 +78,11 @@ py::object fit_array(const Array& data, double rate, const std::string& data_typ
   if (options.method == fit::Method::gmwm) {
     options.gmwm.bootstrap = bootstrap;
     options.gmwm.seed = seed;
+    options.gmwm.robust = robust;
   } else if (bootstrap != 0) {
     throw InputError("bootstrap needs method='gmwm'");
+  } else if (robust) {
+    throw InputError("robust=True needs method='gmwm' (the robust GMWM); fix: method='gmwm', or drop robust");
   }
   fit::parse_method_terms(terms, options);  // gmwm: "N,K,GM,GM" or "auto" (the default list)
   options.tau_min_s = tau_min;
@@ -152,7 +155,7 @@ void register_fit(py::module_& m) {
                   const std::string& method, const std::string& terms, double level, const std::string& taus,
                   const std::string& selection, bool gls, int min_dominant_taus, const std::string& spec_name,
                   double tau_min, double tau_max, bool keep_short_taus, bool exact_model, bool auto_terms,
-                  int bootstrap, std::uint64_t seed, const py::object& time, const py::object& skip, const std::string& detrend,
+                  int bootstrap, std::uint64_t seed, bool robust, const py::object& time, const py::object& skip, const std::string& detrend,
                   const py::object& outliers, const std::string& gaps, bool davar, double davar_window,
                   const py::object& temperature, double temperature_bin) {
           // Preprocessing keywords (preprocessing.hpp); rate may come from time= instead.
@@ -165,7 +168,7 @@ void register_fit(py::module_& m) {
           }
           return fit_array(data, rate_hz, data_type, units, method, terms, level, taus, selection, gls,
                            min_dominant_taus, spec_name, tau_min, tau_max, keep_short_taus, exact_model,
-                           auto_terms, bootstrap, seed, pre);
+                           auto_terms, bootstrap, seed, robust, pre);
         },
         py::arg("data"), py::arg("rate") = py::none(), py::arg("data_type") = "rate",
         py::arg("units") = "", py::arg("method") = "wls", py::arg("terms") = "Q,N,B,K",
@@ -173,7 +176,7 @@ void register_fit(py::module_& m) {
         py::arg("gls") = false, py::arg("min_dominant_taus") = 2, py::arg("spec") = "",
         py::arg("tau_min") = 0.0, py::arg("tau_max") = 0.0, py::arg("keep_short_taus") = false,
         py::arg("exact_model") = false, py::arg("auto_terms") = true, py::arg("bootstrap") = 0,
-        py::arg("seed") = 1,
+        py::arg("seed") = 1, py::arg("robust") = false,
         py::arg("time") = py::none(), py::arg("skip") = py::none(), py::arg("detrend") = "none",
         py::arg("outliers") = py::none(), py::arg("gaps") = "fail", py::arg("davar") = false,
         py::arg("davar_window") = 0.0, py::arg("temperature") = py::none(), py::arg("temperature_bin") = 5.0,
@@ -188,7 +191,8 @@ void register_fit(py::module_& m) {
         "rejects the power-law model (--no-auto-terms). method='gmwm' fits by the generalized "
         "method of wavelet moments: terms like 'N,K,GM,GM' (GM repeated) or 'auto' (WVIC "
         "selection; the default terms mean auto), bootstrap=R parametric-bootstrap replicates "
-        "and seed= (--bootstrap, --seed); the result then has a 'gmwm' section (terms with "
+        "and seed= (--bootstrap, --seed), robust=True the robust GMWM for records with outliers "
+        "(--robust), the term BGM flicker as Gauss-Markov states; the result then has a 'gmwm' section (terms with "
         "intervals, candidates, J test, WVIC) and terms['GM'] lists every Gauss-Markov term. "
         "Preprocessing keywords as imunoise.dev: "
         "time=, skip=, detrend=, outliers=, gaps=, davar=, davar_window=, temperature=, "

@@ -151,6 +151,32 @@ def test_gmwm_method_returns_its_section():
         imunoise.fit(data, 100.0, units="deg/s", method="gmwm", terms="N,XY")
 
 
+def test_gmwm_robust_and_flicker_states():
+    # robust=True (--robust): the robust GMWM, said in the gmwm section; with spikes in 0.1 % of
+    # the samples it stays near the truth where the classical fit does not (tests/fit measures it).
+    rng = np.random.default_rng(5)
+    n_true = 1e-3  # deg/sqrt(s), 100 Hz
+    data = rng.standard_normal(180000) * n_true / math.sqrt(0.01)
+    spikes = rng.random(data.size) < 1e-3
+    data[spikes] = 50.0 * n_true / math.sqrt(0.01) * np.sign(rng.standard_normal(spikes.sum()))
+    rob = imunoise.fit(data, 100.0, units="deg/s", method="gmwm", terms="N", robust=True)
+    cla = imunoise.fit(data, 100.0, units="deg/s", method="gmwm", terms="N")
+    assert rob["gmwm"]["robust"] and not cla["gmwm"]["robust"]
+    assert rob["gmwm"]["robust_estimator"]["efficiency"] == pytest.approx(0.6)
+    assert cla["terms"]["N"]["value"] > 1.5 * n_true
+    assert abs(rob["terms"]["N"]["value"] / n_true - 1.0) < 0.05
+    with pytest.raises(ValueError, match="method='gmwm'"):
+        imunoise.fit(data, 100.0, units="deg/s", robust=True)
+    # BGM: flicker as Gauss-Markov states, listed in terms.GM (part_of BGM); B not also in terms.B.
+    fl = imunoise.simulate(rate=100.0, duration=1800.0, N=1e-3, B=2e-3, seed=9)
+    r = imunoise.fit(fl, 100.0, units="deg/s", method="gmwm", terms="N,BGM")
+    bgm = [t for t in r["gmwm"]["terms"] if t["term"] == "BGM"][0]
+    assert bgm["identified"] and len(bgm["states"]) == r["gmwm"]["flicker_mixture"]["states"]
+    assert len(r["terms"]["GM"]) == len(bgm["states"])
+    assert all(g["part_of"] == "BGM" for g in r["terms"]["GM"])
+    assert not r["terms"]["B"]["identified"]
+
+
 # The command line's fit switches for real sensors: tau_min/tau_max, keep_short_taus, exact_model,
 # auto_terms.
 

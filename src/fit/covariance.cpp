@@ -193,6 +193,9 @@ struct CompositeKernel {
   double mi, mj, ni, nj, tau0;
   std::size_t randoms = 4;
   std::array<Ar1Kernel, GmwmCovarianceBasis::kMaxAr1> ar1{};
+  // A flicker mixture (BGM) in the last AR1 slot: its kernel is the w-weighted sum of these.
+  std::vector<Ar1Kernel> mixture;
+  std::vector<double> mixture_w;
   double finest_tc = 0.0;  // shortest correlation time (0: none)
 
   bool flicker = true;     // false: the flicker kernel is left out (its products are 0)
@@ -220,7 +223,13 @@ struct CompositeKernel {
         out[1] += weight * (-0.5 * t);
         if (flicker && t > 0.0) out[2] += weight * (t * t * std::log(t) / (2.0 * std::numbers::pi));
         out[3] += weight * (t * t * t / 12.0);
-        for (std::size_t g = 0; g + 4 < randoms; ++g) out[4 + g] += weight * ar1[g](t);
+        const std::size_t single = mixture.empty() ? randoms : randoms - 1;
+        for (std::size_t g = 0; g + 4 < single; ++g) out[4 + g] += weight * ar1[g](t);
+        if (!mixture.empty()) {
+          double v = 0.0;
+          for (std::size_t h = 0; h < mixture.size(); ++h) v += mixture_w[h] * mixture[h](t);
+          out[randoms - 1] += weight * v;
+        }
       }
     }
     return out;
@@ -396,11 +405,13 @@ std::vector<double> curve_covariance(std::span<const std::size_t> m_list, std::s
 
 GmwmCovarianceBasis::GmwmCovarianceBasis(std::span<const std::size_t> m_list, std::size_t n_phase,
                                          double tau0_s, std::span<const double> ar1_times_s,
-                                         bool flicker, unsigned threads)
-    : k_(m_list.size()), randoms_(4 + ar1_times_s.size()) {
-  if (ar1_times_s.size() > kMaxAr1) {
+                                         bool flicker, unsigned threads, const FlickerMixture* mixture)
+    : k_(m_list.size()),
+      randoms_(4 + ar1_times_s.size() + (mixture != nullptr && !mixture->empty() ? 1 : 0)),
+      mixture_(mixture != nullptr && !mixture->empty()) {
+  if (randoms_ - 4 > kMaxAr1) {
     throw InputError("wavelet-variance covariance: at most " + std::to_string(kMaxAr1) +
-                     " Gauss-Markov terms");
+                     " Gauss-Markov terms (a flicker mixture BGM counts as one)");
   }
   if (!(tau0_s > 0.0)) throw InputError("wavelet-variance covariance: tau0 must be positive");
   for (std::size_t i = 0; i < k_; ++i) {
@@ -420,6 +431,14 @@ GmwmCovarianceBasis::GmwmCovarianceBasis(std::span<const std::size_t> m_list, st
     }
     base.ar1[g] = Ar1Kernel(tc, tau0_s);
     base.finest_tc = base.finest_tc == 0.0 ? tc : std::min(base.finest_tc, tc);
+  }
+  if (mixture_) {
+    for (std::size_t q = 0; q < mixture->correlation_time_s.size(); ++q) {
+      const double tc = mixture->correlation_time_s[q];
+      base.mixture.emplace_back(tc, tau0_s);
+      base.mixture_w.push_back(mixture->variance_per_b2[q]);
+      base.finest_tc = base.finest_tc == 0.0 ? tc : std::min(base.finest_tc, tc);
+    }
   }
   const std::size_t products = randoms_ * (randoms_ + 1) / 2;
   products_.assign(k_ * k_ * products, 0.0);
@@ -456,8 +475,10 @@ GmwmCovarianceBasis::GmwmCovarianceBasis(std::span<const std::size_t> m_list, st
 }
 
 std::vector<double> GmwmCovarianceBasis::covariance(std::span<const double> theta,
-                                                    std::span<const double> ar1_variances) const {
-  if (theta.size() != static_cast<std::size_t>(kTermCount) || ar1_variances.size() + 4 != randoms_) {
+                                                    std::span<const double> ar1_variances,
+                                                    double mixture_b2) const {
+  if (theta.size() != static_cast<std::size_t>(kTermCount) ||
+      ar1_variances.size() + 4 + (mixture_ ? 1 : 0) != randoms_) {
     throw InputError("wavelet-variance covariance: theta needs 5 entries and one variance per "
                      "Gauss-Markov term");
   }
@@ -469,7 +490,8 @@ std::vector<double> GmwmCovarianceBasis::covariance(std::span<const double> thet
   for (std::size_t e = 0; e < k_ * k_; ++e) {
     const double tau_ij = std::sqrt(tau_s_[e / k_] * tau_s_[e % k_]);
     for (std::size_t a = 0; a < 4; ++a) t[a] = std::max(0.0, theta[a]);
-    for (std::size_t g = 0; g + 4 < randoms_; ++g) t[4 + g] = std::max(0.0, ar1_variances[g]);
+    for (std::size_t g = 0; g < ar1_variances.size(); ++g) t[4 + g] = std::max(0.0, ar1_variances[g]);
+    if (mixture_) t[randoms_ - 1] = std::max(0.0, mixture_b2);
     t[static_cast<std::size_t>(kK)] += 1.5 * theta_r * tau_ij;
     std::size_t idx = 0;
     for (std::size_t a = 0; a < randoms_; ++a) {

@@ -363,10 +363,11 @@ void try_automatic_terms(const Curve& curve, std::size_t n_phase, double tau0_s,
 /// the residuals at its dyadic taus (the other taus: used = false).
 FitResult fit_gmwm_curve(const std::vector<std::size_t>& m, const std::vector<double>& avar,
                          const Curve& full_curve, const std::vector<std::size_t>& excluded_index,
-                         std::size_t n_phase, double tau0_s, const FitOptions& options, FitResult result) {
+                         std::size_t n_phase, double tau0_s, const FitOptions& options, FitResult result,
+                         std::span<const double> phase_si) {
   GmwmOptions go = options.gmwm;
   go.level = options.level;
-  GmwmResult g = fit_gmwm(m, avar, n_phase, tau0_s, go);
+  GmwmResult g = fit_gmwm(m, avar, n_phase, tau0_s, go, phase_si);
   // The report's convention for a term not identified: value 0 (the optimiser's last T_c or f0
   // is no estimate; it stays in the note), no interval.
   for (auto& t : g.terms) {
@@ -404,12 +405,29 @@ FitResult fit_gmwm_curve(const std::vector<std::size_t>& m, const std::vector<do
       // exports, the navigation error and the report take them all.
       case GmwmTerm::GM: result.coefficients.gauss_markov.push_back({t.magnitude, t.shape}); break;
       case GmwmTerm::SIN: result.coefficients.sinusoid = SinusoidTerm{t.magnitude, t.shape}; break;
+      case GmwmTerm::BGM:
+        // Flicker written as Gauss-Markov states: the states go where every consumer takes GM
+        // terms (exports, navigation error, the report's curve); B itself is not also set, or
+        // the flicker would be counted twice. B (value, interval) is in the gmwm section.
+        for (const auto& s : t.states) result.coefficients.gauss_markov.push_back(s);
+        coefficient(result.coefficients, kB).note = fmt::format(
+            "the gmwm model {} writes the flicker as {} Gauss-Markov states (BGM; in GM): B = {:.4g}{}, "
+            "in the gmwm section",
+            g.model, t.states.size(), t.magnitude.value, t.magnitude.identified ? "" : " (not identified)");
+        break;
     }
     if (j < 0) continue;
     coefficient(result.coefficients, j) = t.magnitude;
     result.terms[j].fitted = true;
     result.terms[j].theta = t.magnitude.value * t.magnitude.value;
     result.terms[j].estimate = t.magnitude.value;
+  }
+  if (!g.flicker_mixture.empty()) {
+    // The mixture's states among the GM terms, by correlation time.
+    std::stable_sort(result.coefficients.gauss_markov.begin(), result.coefficients.gauss_markov.end(),
+                     [](const GaussMarkovTerm& x, const GaussMarkovTerm& y) {
+                       return x.correlation_time_s.value < y.correlation_time_s.value;
+                     });
   }
   // Residuals at the fitted (dyadic) taus; every other tau of the curve is shown unused.
   for (const auto& s : g.scales) {
@@ -530,7 +548,7 @@ std::string FitSummary::FullReport() const {
 }
 
 FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase, double tau0_s,
-                    const FitOptions& options) {
+                    const FitOptions& options, std::span<const double> phase_si) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("fit options: " + why);
   if (!(tau0_s > 0.0) || !std::isfinite(tau0_s)) throw InputError("fit: tau0 must be positive");
@@ -638,7 +656,7 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
   }
   if (options.method == Method::gmwm) {
     return fit_gmwm_curve(curve.m, curve.avar, full_curve, excluded_index, n_phase, tau0_s, options,
-                          std::move(result));
+                          std::move(result), phase_si);
   }
   // The curve before the interior-bend cut: the automatic optional terms are fitted on it.
   const Curve curve_with_bends = curve;

@@ -35,6 +35,7 @@ const char* gmwm_term_name(GmwmTerm term) {
     case GmwmTerm::R: return "R";
     case GmwmTerm::GM: return "GM";
     case GmwmTerm::SIN: return "SIN";
+    case GmwmTerm::BGM: return "BGM";
   }
   return "?";
 }
@@ -101,9 +102,17 @@ bool GmwmOptions::IsValid(std::string* error) const {
   if (!automatic && terms.empty()) return fail("gmwm needs at least one term");
   if (!automatic) {
     int gm = 0;
-    for (GmwmTerm t : terms) gm += t == GmwmTerm::GM;
+    for (GmwmTerm t : terms) gm += t == GmwmTerm::GM || t == GmwmTerm::BGM;
     if (gm > static_cast<int>(GmwmCovarianceBasis::kMaxAr1)) {
-      return fail(fmt::format("gmwm: at most {} GM terms", GmwmCovarianceBasis::kMaxAr1));
+      return fail(fmt::format("gmwm: at most {} GM terms (BGM counts as one)", GmwmCovarianceBasis::kMaxAr1));
+    }
+    for (GmwmTerm t : terms) {
+      for (GmwmTerm u : terms) {
+        if (t == GmwmTerm::B && u == GmwmTerm::BGM) {
+          return fail("gmwm: B and BGM are the same flicker noise (BGM is B written as Gauss-Markov "
+                      "states); list one of them");
+        }
+      }
     }
     for (std::size_t i = 0; i < terms.size(); ++i) {
       for (std::size_t j = i + 1; j < terms.size(); ++j) {
@@ -119,6 +128,12 @@ bool GmwmOptions::IsValid(std::string* error) const {
   if (weight_iterations < 1 || weight_iterations > 20) return fail("gmwm: weight_iterations must be 1..20");
   if (bootstrap < 0 || bootstrap > 100000) return fail("gmwm: bootstrap must be 0..100000");
   if (max_iterations < 1 || max_iterations > 100000) return fail("gmwm: max_iterations must be 1..100000");
+  if (flicker_states_per_decade < 1 || flicker_states_per_decade > 4) {
+    return fail("gmwm: flicker_states_per_decade must be 1..4");
+  }
+  if (robust && !(robust_efficiency >= 0.55 && robust_efficiency <= 0.99)) {
+    return fail("gmwm: robust_efficiency must be in [0.55, 0.99]");
+  }
   return true;
 }
 
@@ -144,9 +159,11 @@ void parse_gmwm_terms(std::string_view list, GmwmOptions& options) {
     else if (name == "R") options.terms.push_back(GmwmTerm::R);
     else if (name == "GM") options.terms.push_back(GmwmTerm::GM);
     else if (name == "SIN") options.terms.push_back(GmwmTerm::SIN);
+    else if (name == "BGM") options.terms.push_back(GmwmTerm::BGM);
     else {
       throw InputError("unknown gmwm term '" + std::string(item) +
-                       "' in --terms; use a comma list of Q, N, B, K, R, GM (may repeat), SIN, or auto");
+                       "' in --terms; use a comma list of Q, N, B, K, R, GM (may repeat), SIN, BGM "
+                       "(flicker as Gauss-Markov states), or auto");
     }
     if (comma == std::string_view::npos) break;
     start = comma + 1;
@@ -171,6 +188,7 @@ double unit_avar(GmwmTerm t, double shape, const GmwmCurve& c, std::size_t i) {
     case GmwmTerm::R: return gmwm_avar_ramp(tau);
     case GmwmTerm::GM: return gmwm_avar_ar1(shape, c.tau0_s, c.m[i]);
     case GmwmTerm::SIN: return gmwm_avar_sinusoid(shape, tau);
+    case GmwmTerm::BGM: return gmwm_avar_flicker_mixture(c.flicker_mixture, c.tau0_s, c.m[i]);
   }
   return 0.0;
 }
@@ -218,7 +236,7 @@ Vector model_avar(const Layout& layout, const Vector& p, const GmwmCurve& c, Mat
 Matrix model_covariance(const Layout& layout, const Vector& p, const GmwmCurve& c) {
   double theta5[kTermCount] = {0, 0, 0, 0, 0};
   std::vector<double> times, variances;
-  double sine_avar_scale = 0.0;
+  double sine_avar_scale = 0.0, mixture_b2 = 0.0;
   for (std::size_t t = 0; t < layout.terms.size(); ++t) {
     const double v = std::exp(p(layout.magnitude[t]));
     switch (layout.terms[t]) {
@@ -232,10 +250,16 @@ Matrix model_covariance(const Layout& layout, const Vector& p, const GmwmCurve& 
         variances.push_back(v);
         break;
       case GmwmTerm::SIN: sine_avar_scale = 1.0; break;
+      case GmwmTerm::BGM: mixture_b2 = v; break;
     }
   }
-  const GmwmCovarianceBasis basis(c.m, c.n_phase, c.tau0_s, times, theta5[kB] > 0.0, c.threads);
-  Matrix sigma = to_matrix(basis.covariance(theta5, variances), c.m.size());
+  const bool mixture = std::find(layout.terms.begin(), layout.terms.end(), GmwmTerm::BGM) != layout.terms.end();
+  const GmwmCovarianceBasis basis(c.m, c.n_phase, c.tau0_s, times, theta5[kB] > 0.0, c.threads,
+                                  mixture ? &c.flicker_mixture : nullptr);
+  Matrix sigma = to_matrix(basis.covariance(theta5, variances, mixture_b2), c.m.size());
+  // Robust estimates (GmwmOptions::robust): their covariance is the classical one over the
+  // biweight's Gaussian efficiency (robust_wavelet.hpp; a first approximation, docs/fit.md).
+  sigma /= c.efficiency;
   if (sine_avar_scale > 0.0) {
     // A sinusoid is deterministic: it adds no Gaussian variance of its own, but it is not in
     // the kernels either. As the wls fit does, scale each row/column by (model with it) /

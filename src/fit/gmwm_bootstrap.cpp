@@ -40,11 +40,27 @@ struct SimPlan {
   std::vector<sim::ChannelSpec> channels;  // summed
 };
 
-SimPlan plan_for(const Layout& layout, const Vector& p, double tau0_s) {
+SimPlan plan_for(const Layout& layout, const Vector& p, const GmwmCurve& c) {
+  const double tau0_s = c.tau0_s;
   sim::NoiseModel main;
   std::vector<sim::NoiseModel> extra;
   double white_variance_rate = 0.0;  // N^2
   bool main_gm_used = false;
+  // One AR1 of the samples (variance, T_c) as the simulator's averaged GM plus white noise.
+  auto add_ar1 = [&](double v, double tc) {
+    const Ar1AsSim s = ar1_as_sim(v, tc, tau0_s);
+    white_variance_rate += s.white_per_sample_variance * tau0_s;
+    if (!main_gm_used) {
+      main.gm_sigma_unit = s.sigma;
+      main.gm_time_s = tc;
+      main_gm_used = true;
+    } else {
+      sim::NoiseModel only;
+      only.gm_sigma_unit = s.sigma;
+      only.gm_time_s = tc;
+      extra.push_back(only);
+    }
+  };
   for (std::size_t t = 0; t < layout.terms.size(); ++t) {
     const double v = std::exp(p(layout.magnitude[t]));
     switch (layout.terms[t]) {
@@ -57,22 +73,13 @@ SimPlan plan_for(const Layout& layout, const Vector& p, double tau0_s) {
         main.sine_amplitude_unit = std::sqrt(v);
         main.sine_frequency_hz = std::exp(p(layout.shape[t]));
         break;
-      case GmwmTerm::GM: {
-        const double tc = std::exp(p(layout.shape[t]));
-        const Ar1AsSim s = ar1_as_sim(v, tc, tau0_s);
-        white_variance_rate += s.white_per_sample_variance * tau0_s;
-        if (!main_gm_used) {
-          main.gm_sigma_unit = s.sigma;
-          main.gm_time_s = tc;
-          main_gm_used = true;
-        } else {
-          sim::NoiseModel only;
-          only.gm_sigma_unit = s.sigma;
-          only.gm_time_s = tc;
-          extra.push_back(only);
+      case GmwmTerm::GM: add_ar1(v, std::exp(p(layout.shape[t]))); break;
+      case GmwmTerm::BGM:
+        // The mixture's states, each an AR1 of the samples (exactly the model fitted).
+        for (std::size_t q = 0; q < c.flicker_mixture.correlation_time_s.size(); ++q) {
+          add_ar1(v * c.flicker_mixture.variance_per_b2[q], c.flicker_mixture.correlation_time_s[q]);
         }
         break;
-      }
     }
   }
   main.n_unit_sqrt_s = std::sqrt(white_variance_rate);
@@ -87,7 +94,7 @@ SimPlan plan_for(const Layout& layout, const Vector& p, double tau0_s) {
 std::vector<Vector> bootstrap_parameters(const Layout& layout, const Vector& p, const GmwmCurve& c,
                                          const Matrix& whiten, int replicates, std::uint64_t seed,
                                          unsigned threads) {
-  const SimPlan plan = plan_for(layout, p, c.tau0_s);
+  const SimPlan plan = plan_for(layout, p, c);
   const std::size_t n_samples = c.n_phase - 1;
   const double rate_hz = 1.0 / c.tau0_s;
   const double duration_s = static_cast<double>(n_samples) * c.tau0_s;
@@ -120,13 +127,19 @@ std::vector<Vector> bootstrap_parameters(const Layout& layout, const Vector& p, 
         acc += static_cast<long double>((rate[i] - mean) * c.tau0_s);
         phase[i + 1] = static_cast<double>(acc);
       }
-      DevOptions dev;
-      dev.threads = 1;
-      const auto points = oadev(phase, c.tau0_s, c.m, dev);
       GmwmCurve rc = c;
-      bool finite = points.size() == c.m.size();
-      for (std::size_t i = 0; finite && i < points.size(); ++i) {
-        rc.avar[i] = points[i].dev * points[i].dev;
+      bool finite = true;
+      if (c.robust) {
+        // The robust fit's replicates take the same robust estimates.
+        rc.avar = robust_avar(phase, c.tau0_s, c.m, c.biweight);
+      } else {
+        DevOptions dev;
+        dev.threads = 1;
+        const auto points = oadev(phase, c.tau0_s, c.m, dev);
+        finite = points.size() == c.m.size();
+        for (std::size_t i = 0; finite && i < points.size(); ++i) rc.avar[i] = points[i].dev * points[i].dev;
+      }
+      for (std::size_t i = 0; finite && i < rc.avar.size(); ++i) {
         finite = std::isfinite(rc.avar[i]) && rc.avar[i] > 0.0;
       }
       if (!finite) continue;

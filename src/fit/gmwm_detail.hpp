@@ -9,6 +9,7 @@
 #include <Eigen/Dense>
 
 #include "imunoise/fit/gmwm.hpp"
+#include "imunoise/fit/robust_wavelet.hpp"
 
 namespace imunoise::fit::detail {
 
@@ -25,6 +26,13 @@ struct GmwmCurve {
   unsigned threads = 1;  ///< for the covariance sums
   bool full_weight = false;  ///< W = Sigma^-1 (true) or diag(Sigma)^-1 (GmwmOptions::full_weight)
   int max_iterations = 200;  ///< LM iterations per start (GmwmOptions::max_iterations)
+  /// BGM: the flicker mixture over this curve's scales (empty without BGM).
+  FlickerMixture flicker_mixture;
+  /// 1 for the classical estimates; the biweight's efficiency for robust ones (the model
+  /// covariance is divided by it).
+  double efficiency = 1.0;
+  bool robust = false;
+  Biweight biweight;  ///< robust: the estimator of the scales (robust_wavelet.hpp)
 };
 
 /// Where each term's parameters sit in the parameter vector (log variance, then log T_c or

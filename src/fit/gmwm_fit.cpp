@@ -355,7 +355,7 @@ double detail_normal_quantile(double level) {
 }  // namespace
 
 GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar, std::size_t n_phase,
-                    double tau0_s, const GmwmOptions& options) {
+                    double tau0_s, const GmwmOptions& options, std::span<const double> phase_si) {
   using namespace detail;
   std::string why;
   if (!options.IsValid(&why)) throw InputError(why);
@@ -377,6 +377,39 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
   }
   GmwmResult result;
   result.seed = options.seed;
+  if (options.robust) {
+    // The robust estimates need the samples, not the curve.
+    if (phase_si.size() != n_phase) {
+      throw InputError(fmt::format("gmwm --robust needs the record's {} phase samples (got {}): the robust "
+                                   "wavelet variance is computed from the samples, not from the Allan curve",
+                                   n_phase, phase_si.size()));
+    }
+    c.robust = true;
+    c.biweight = biweight_for_efficiency(options.robust_efficiency);
+    c.efficiency = c.biweight.efficiency;
+    const std::vector<double> r = robust_avar(phase_si, tau0_s, c.m, c.biweight);
+    GmwmCurve kept = c;
+    kept.m.clear();
+    kept.tau_s.clear();
+    kept.avar.clear();
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      if (r[i] > 0.0 && std::isfinite(r[i])) {
+        kept.m.push_back(c.m[i]);
+        kept.tau_s.push_back(c.tau_s[i]);
+        kept.avar.push_back(r[i]);
+      }
+    }
+    if (kept.m.size() < c.m.size()) {
+      result.warnings.push_back(fmt::format(
+          "gmwm --robust: {} scale(s) left out: more than half of their wavelet coefficients are exactly 0 "
+          "(quantized data), so their robust scale is 0",
+          c.m.size() - kept.m.size()));
+    }
+    c = std::move(kept);
+    result.robust = true;
+    result.robust_efficiency = c.biweight.efficiency;
+    result.robust_tuning = c.biweight.c;
+  }
   const auto k = c.m.size();
   if (k < m.size()) {
     result.warnings.push_back(fmt::format(
@@ -405,6 +438,11 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
           model_name(terms), layout.parameters, k, layout.parameters + 1));
     }
     candidates.push_back(terms);
+    if (std::find(terms.begin(), terms.end(), GmwmTerm::BGM) != terms.end()) {
+      // Flat over the scales fitted (gmwm_flicker.hpp).
+      c.flicker_mixture = flicker_ar1_mixture(tau0_s, c.m.front(), c.m.back(), options.flicker_states_per_decade);
+      result.flicker_mixture = c.flicker_mixture;
+    }
   }
 
   const Matrix w0 = initial_whitener(c);
@@ -611,6 +649,27 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
       e.magnitude.ci_high = std::numeric_limits<double>::quiet_NaN();
     }
     result.warnings.push_back("gmwm: " + result.model + " " + stopped);
+  }
+  // BGM: the Gauss-Markov states it stands for, with B's interval and verdict.
+  for (auto& e : result.terms) {
+    if (e.kind != GmwmTerm::BGM) continue;
+    const FlickerMixture& mix = c.flicker_mixture;
+    for (std::size_t q = 0; q < mix.correlation_time_s.size(); ++q) {
+      const double r = std::sqrt(mix.variance_per_b2[q]);
+      GaussMarkovTerm s;
+      s.sigma.value = r * e.magnitude.value;
+      s.sigma.ci_low = r * e.magnitude.ci_low;
+      s.sigma.ci_high = r * e.magnitude.ci_high;
+      s.sigma.identified = e.magnitude.identified;
+      s.sigma.note = fmt::format("state {} of {} of the flicker mixture BGM: sigma = B sqrt({:.4g})", q + 1,
+                                 mix.correlation_time_s.size(), mix.variance_per_b2[q]);
+      if (!e.magnitude.identified) s.sigma.note += "; B not identified: " + e.magnitude.note;
+      s.correlation_time_s.value = mix.correlation_time_s[q];
+      s.correlation_time_s.ci_low = s.correlation_time_s.ci_high = mix.correlation_time_s[q];
+      s.correlation_time_s.identified = e.magnitude.identified;
+      s.correlation_time_s.note = "fixed by the flicker mixture BGM (not estimated)";
+      e.states.push_back(std::move(s));
+    }
   }
   if (result.j_p_value < 1e-3) {
     result.warnings.push_back(fmt::format(

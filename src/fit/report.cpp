@@ -1,5 +1,6 @@
 #include "imunoise/fit/report.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "imunoise/error.hpp"
@@ -101,6 +102,14 @@ nlohmann::json gmwm_json(const RecordInfo& record, const GmwmResult& g) {
                                    t.magnitude_boot_high, f);
         j["frequency_hz"] = with_boot(coefficient_json(t.shape, 1.0, "Hz"), t.shape_boot_low, t.shape_boot_high, 1.0);
         break;
+      case GmwmTerm::BGM: {
+        // B like the power-law model's, and the Gauss-Markov states it stands for.
+        j = with_boot(coefficient_json(t.magnitude, f, names[static_cast<std::size_t>(kB)]), t.magnitude_boot_low, t.magnitude_boot_high, f);
+        nlohmann::json states = nlohmann::json::array();
+        for (const auto& s : t.states) states.push_back(gauss_markov_json(record, s));
+        j["states"] = std::move(states);
+        break;
+      }
       default: {
         const int idx = t.kind == GmwmTerm::Q ? kQ : t.kind == GmwmTerm::N ? kN : t.kind == GmwmTerm::B ? kB
                         : t.kind == GmwmTerm::K ? kK : kR;
@@ -123,7 +132,7 @@ nlohmann::json gmwm_json(const RecordInfo& record, const GmwmResult& g) {
     wv.push_back({{"tau_s", s.tau_s}, {"wv", number(s.wv / (f * f))}, {"wv_model", number(s.wv_model / (f * f))},
                   {"wv_sd", number(s.wv_sd / (f * f))}});
   }
-  return {{"model", g.model},
+  nlohmann::json doc = {{"model", g.model},
           {"status", gmwm_status_name(g.status)},
           {"message", g.message},
           {"terms", std::move(terms)},
@@ -140,6 +149,28 @@ nlohmann::json gmwm_json(const RecordInfo& record, const GmwmResult& g) {
           {"note", "Haar wavelet variance = overlapping Allan variance / 2 at the dyadic taus; GM terms are "
                    "AR1 processes of the samples, ordered by correlation time; intervals: delta method on "
                    "the log scale (bootstrap_ci: parametric bootstrap percentiles)"}};
+  doc["robust"] = g.robust;
+  if (g.robust) {
+    doc["robust_estimator"] = {
+        {"efficiency", g.robust_efficiency},
+        {"tuning_constant", g.robust_tuning},
+        {"note", "wavelet variances: Tukey-biweight M-estimates of the scale of the Haar coefficients, "
+                 "Fisher-consistent at the Gaussian; their covariance: the analytic one / efficiency"}};
+  }
+  if (!g.flicker_mixture.empty()) {
+    const auto& mix = g.flicker_mixture;
+    doc["flicker_mixture"] = {
+        {"states", mix.correlation_time_s.size()},
+        {"per_decade", mix.per_decade},
+        {"ripple", mix.ripple},
+        {"flat_tau_s", {static_cast<double>(mix.m_lo) / record.rate_hz, static_cast<double>(mix.m_hi) / record.rate_hz}},
+        {"correlation_time_s", mix.correlation_time_s},
+        {"variance_per_b2", mix.variance_per_b2},
+        {"note", "BGM: flicker B as a fixed sum of AR1 states, T_c per_decade per decade, variance ratios "
+                 "such that the sum's Allan variance is (2 ln 2 / pi) B^2 over flat_tau_s to the relative "
+                 "ripple"}};
+  }
+  return doc;
 }
 
 }  // namespace
@@ -227,9 +258,15 @@ nlohmann::json report_json(const RecordInfo& record, const FitOptions& options,
     // Every GM term of the gmwm model, by correlation time, in the same shape as the wls one's;
     // the bootstrap intervals are in the "gmwm" section.
     nlohmann::json gm = nlohmann::json::array();
+    const auto& mix = r.gmwm->flicker_mixture.correlation_time_s;
     for (const auto& g : r.coefficients.gauss_markov) {
       nlohmann::json j = gauss_markov_json(record, g);
       j["fitted"] = true;
+      // A state of the flicker mixture (its T_c is fixed, not estimated).
+      if (std::find(mix.begin(), mix.end(), g.correlation_time_s.value) != mix.end() &&
+          g.correlation_time_s.ci_low == g.correlation_time_s.ci_high) {
+        j["part_of"] = "BGM";
+      }
       gm.push_back(std::move(j));
     }
     if (!gm.empty()) terms["GM"] = std::move(gm);

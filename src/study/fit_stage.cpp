@@ -27,7 +27,16 @@ fit::RecordInfo record_info(const Record& record) {
 fit::FitResult fit_curve(const Record& record, std::span<const DevPoint> oadev_points, std::size_t n_phase,
                          const fit::FitOptions& options, const std::vector<std::string>& warnings) {
   const double tau0_s = 1.0 / record.rate_hz;
-  fit::FitResult result = fit::fit_allan(oadev_points, n_phase, tau0_s, options);
+  // The robust gmwm estimates come from the samples: the record's phase when the curve is of
+  // the whole record (not of pooled segments, bins or MPI slices).
+  const bool whole = n_phase == record.phase_si.size() && record.segments.size() <= 1;
+  if (options.method == fit::Method::gmwm && options.gmwm.robust && !whole) {
+    throw InputError(record.source + ": --robust needs the curve of one contiguous record in memory (this one "
+                     "is split into segments, pooled or distributed); fix: fit without --robust, or without "
+                     "--gaps split / --outliers reject / --mpi");
+  }
+  fit::FitResult result = fit::fit_allan(oadev_points, n_phase, tau0_s, options,
+                                         whole ? std::span<const double>(record.phase_si) : std::span<const double>());
   result.summary.warnings.insert(result.summary.warnings.begin(), warnings.begin(), warnings.end());
   if (result.summary.termination == fit::Termination::degenerate_input ||
       result.summary.termination == fit::Termination::too_few_points) {

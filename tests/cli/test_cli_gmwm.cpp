@@ -209,5 +209,84 @@ TEST(CliGmwm, BadInputEndsWithAClearMessageOrATermNotIdentified) {
   EXPECT_FALSE(auto_doc["terms"].contains("GM"));
 }
 
+// --terms N,BGM,K: flicker written as Gauss-Markov states. The states are in the fit document
+// (gmwm section and terms.GM, marked part_of BGM), in the Kalman-filter JSON (one state each,
+// SI) and B is not also reported as the power-law B (it would be counted twice downstream).
+TEST(CliGmwm, FlickerAsGaussMarkovStatesReachesTheKalmanFilterJson) {
+  TempDir dir;
+  const std::string rec = dir.file("flicker.f64");
+  ASSERT_EQ(run_cli({"simulate", "--rate", "100", "--duration", "1800", "--N", "1e-3", "--B", "2e-3", "--K", "1e-5",
+                     "--units", "deg/s", "--seed", "12", "--format", "f64", "-o", rec})
+                .exit_code,
+            0);
+  const std::string kf = dir.file("kf.json");
+  const auto r = run_cli({"fit", rec, "--binary", "f64", "--rate", "100", "--units", "deg/s", "--method", "gmwm",
+                          "--terms", "N,BGM,K", "--kf-json", kf});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  const auto& g = doc["gmwm"];
+  EXPECT_EQ(g["model"], "N+BGM+K");
+  const auto& mix = g["flicker_mixture"];
+  const std::size_t count = mix["states"].get<std::size_t>();
+  ASSERT_GE(count, 4u) << mix;
+  EXPECT_LT(mix["ripple"].get<double>(), 0.03);
+  nlohmann::json bgm;
+  for (const auto& t : g["terms"]) {
+    if (t["term"] == "BGM") bgm = t;
+  }
+  ASSERT_FALSE(bgm.is_null()) << g["terms"];
+  ASSERT_TRUE(bgm["identified"].get<bool>()) << bgm;
+  EXPECT_EQ(bgm["unit"], "deg/s");
+  // Loose (plumbing; the estimator's accuracy is tests/fit/test_gmwm_flicker.cpp's).
+  EXPECT_NEAR(std::log(bgm["value"].get<double>() / 2e-3), 0.0, std::log(1.5)) << bgm;
+  ASSERT_EQ(bgm["states"].size(), count);
+  EXPECT_FALSE(doc["terms"]["B"]["identified"].get<bool>());
+  EXPECT_NE(doc["terms"]["B"]["note"].get<std::string>().find("BGM"), std::string::npos) << doc["terms"]["B"];
+  ASSERT_EQ(doc["terms"]["GM"].size(), count) << doc["terms"];
+  for (const auto& s : doc["terms"]["GM"]) EXPECT_EQ(s["part_of"], "BGM") << s;
+  const auto k = nlohmann::json::parse(slurp(kf));
+  const auto& states = k["gauss_markov_states"];
+  ASSERT_EQ(states.size(), count) << k.dump(1);
+  for (std::size_t i = 0; i < count; ++i) {
+    const auto& mine = bgm["states"][i];
+    EXPECT_NEAR(states[i]["sigma"]["value"].get<double>() / (mine["sigma"]["value"].get<double>() * kDeg), 1.0, 1e-12);
+    EXPECT_DOUBLE_EQ(states[i]["correlation_time"]["value"].get<double>(),
+                     mix["correlation_time_s"][i].get<double>());
+    EXPECT_DOUBLE_EQ(mine["correlation_time_s"]["value"].get<double>(), mix["correlation_time_s"][i].get<double>());
+  }
+  // B and BGM together: exit 1 naming the clash.
+  const auto both = run_cli({"fit", rec, "--binary", "f64", "--rate", "100", "--units", "deg/s", "--method", "gmwm",
+                             "--terms", "N,B,BGM"});
+  EXPECT_EQ(both.exit_code, 1);
+  EXPECT_NE(both.err.find("BGM"), std::string::npos) << both.err;
+}
+
+TEST(CliGmwm, RobustNeedsGmwmAndSaysSoInTheDocument) {
+  TempDir dir;
+  const std::string white = dir.file("white.txt");
+  ASSERT_EQ(run_cli({"simulate", "--rate", "100", "--duration", "600", "--N", "1e-3", "--units", "deg/s", "--seed",
+                     "8", "-o", white})
+                .exit_code,
+            0);
+  const auto r = run_cli({"fit", white, "--rate", "100", "--units", "deg/s", "--method", "gmwm", "--terms", "N",
+                          "--robust"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(r.out);
+  EXPECT_TRUE(doc["gmwm"]["robust"].get<bool>());
+  EXPECT_NEAR(doc["gmwm"]["robust_estimator"]["efficiency"].get<double>(), 0.6, 1e-9);
+  EXPECT_GT(doc["gmwm"]["robust_estimator"]["tuning_constant"].get<double>(), 1.5);
+  EXPECT_TRUE(doc["terms"]["N"]["identified"].get<bool>());
+  EXPECT_NEAR(std::log(doc["terms"]["N"]["value"].get<double>() / 1e-3), 0.0, std::log(1.05)) << doc["terms"]["N"];
+  // Without it: robust false, no estimator block.
+  const auto c = run_cli({"fit", white, "--rate", "100", "--units", "deg/s", "--method", "gmwm", "--terms", "N"});
+  ASSERT_EQ(c.exit_code, 0) << c.err;
+  EXPECT_FALSE(nlohmann::json::parse(c.out)["gmwm"]["robust"].get<bool>());
+  // --robust without --method gmwm: exit 1 naming the fix, nothing on standard output.
+  const auto bad = run_cli({"fit", white, "--rate", "100", "--units", "deg/s", "--robust"});
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("--robust needs --method gmwm"), std::string::npos) << bad.err;
+  EXPECT_TRUE(bad.out.empty());
+}
+
 }  // namespace
 }  // namespace imunoise::test

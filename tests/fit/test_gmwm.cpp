@@ -173,6 +173,31 @@ TEST(GmwmCovariance, Ar1KernelsMatchABruteForceSum) {
   }
 }
 
+// The flicker mixture (BGM) enters the covariance as one random term whose kernel is the
+// weighted sum of its AR1 kernels: against the brute-force Isserlis sum of its autocovariance.
+TEST(GmwmCovariance, FlickerMixtureKernelMatchesABruteForceSum) {
+  const double tau0 = 0.01;
+  const std::size_t n_phase = 1200;
+  const std::vector<std::size_t> ms{1, 2, 4, 16, 64};
+  const FlickerMixture mix = flicker_ar1_mixture(tau0, 1, 64, 2);
+  ASSERT_GE(mix.correlation_time_s.size(), 4u);
+  const double b2 = 0.9, n2 = 2e-3;
+  auto r = [&](long d) {
+    double v = d == 0 ? n2 / tau0 : 0.0;
+    for (std::size_t q = 0; q < mix.correlation_time_s.size(); ++q) {
+      v += b2 * mix.variance_per_b2[q] * std::exp(-std::abs(static_cast<double>(d)) * tau0 / mix.correlation_time_s[q]);
+    }
+    return v;
+  };
+  const auto expect = brute_covariance(ms, n_phase, tau0, r);
+  const GmwmCovarianceBasis basis(ms, n_phase, tau0, {}, false, 1, &mix);
+  const double theta[5] = {0.0, n2, 0.0, 0.0, 0.0};
+  const auto got = basis.covariance(theta, {}, b2);
+  for (std::size_t e = 0; e < expect.size(); ++e) {
+    EXPECT_NEAR(got[e] / expect[e], 1.0, 2e-6) << "entry " << e;
+  }
+}
+
 /// The exact curve of a model (noise-free), for recovery checks.
 std::vector<double> exact_avar(const std::vector<std::size_t>& ms, double tau0, double n, double k,
                                const std::vector<Ar1Spec>& ar1) {

@@ -238,8 +238,11 @@ struct FitResult {
 /// Fits the noise model to an oadev curve (points from compute_deviation(oadev, ...), SI).
 /// n_phase: number of phase samples of the record (needed for the estimate covariance).
 /// Throws InputError when options are invalid; numerical outcomes are in summary.termination.
+/// phase_si: the record's n_phase phase samples, needed by method gmwm with gmwm.robust only
+/// (its estimates come from the samples).
 FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
-                    double tau0_s, const FitOptions& options = {});
+                    double tau0_s, const FitOptions& options = {},
+                    std::span<const double> phase_si = {});
 
 /// Checks a record before fitting: non-finite values and fewer than 5 samples throw
 /// InputError; saturation (more than 0.1% of the rate samples at the extreme value) and

@@ -29,6 +29,10 @@
 //      e^-x)] / x^2 (~ sigma^2 x / 3): the two differ at tau ~ tau0 when T_c ~ tau0 and
 //      coincide for T_c >> tau0. gmwm_avar_ar1 is exact for the AR1; the bootstrap converts.
 //   SIN A sin(2 pi f0 t + phase) averaged over each sample    A^2 (sin^2(pi f0 tau) / (pi f0 tau))^2
+//   BGM flicker B written as a fixed sum of AR1 terms         B^2 sum_i w_i AVAR_AR1(T_i, m)
+//      (gmwm_flicker.hpp: T_i two per decade over the curve's span, w_i such that the sum is the
+//      floor (2 ln 2 / pi) to a stated ripple): one parameter, exact for the sampled AR1 sum,
+//      and the states a Kalman filter can carry (sigma_i = B sqrt(w_i), T_i)
 //
 // Estimator. theta minimises (a_hat - a(theta))' W (a_hat - a(theta)) over the log of every
 // variance and every T_c (positivity by reparametrisation), W = Sigma(theta)^-1 the inverse of
@@ -60,12 +64,13 @@
 #include <string_view>
 #include <vector>
 
+#include "imunoise/fit/gmwm_flicker.hpp"
 #include "imunoise/noise_coefficients.hpp"
 
 namespace imunoise::fit {
 
-enum class GmwmTerm { Q, N, B, K, R, GM, SIN };
-/// "Q", "N", "B", "K", "R", "GM", "SIN".
+enum class GmwmTerm { Q, N, B, K, R, GM, SIN, BGM };
+/// "Q", "N", "B", "K", "R", "GM", "SIN", "BGM".
 const char* gmwm_term_name(GmwmTerm term);
 
 /// Unit-intensity Allan variance (2 x the Haar wavelet variance) at tau = m tau0 of each term
@@ -89,17 +94,22 @@ class GmwmCovarianceBasis {
   /// flicker = false leaves the flicker kernel out (a model without B: faster, its variance
   /// must then be 0); threads: pairs of scales summed in parallel (0: all hardware threads;
   /// the result does not depend on it).
+  /// mixture (may be null): a flicker mixture (BGM) as one more random term whose kernel is
+  /// the w_i-weighted sum of its AR1 kernels; it counts as one of the kMaxAr1.
   GmwmCovarianceBasis(std::span<const std::size_t> m_list, std::size_t n_phase, double tau0_s,
-                      std::span<const double> ar1_times_s, bool flicker = true, unsigned threads = 1);
+                      std::span<const double> ar1_times_s, bool flicker = true, unsigned threads = 1,
+                      const FlickerMixture* mixture = nullptr);
   /// theta = (Q^2, N^2, B^2, K^2, R^2) (R as in CovarianceBasis: a rate random walk of equal
-  /// Allan variance), ar1_variances one sigma^2 per AR1 term. Row-major k x k.
+  /// Allan variance), ar1_variances one sigma^2 per AR1 term, mixture_b2 the B^2 of the
+  /// mixture (ignored without one). Row-major k x k.
   std::vector<double> covariance(std::span<const double> theta,
-                                 std::span<const double> ar1_variances) const;
+                                 std::span<const double> ar1_variances, double mixture_b2 = 0.0) const;
   std::size_t size() const { return k_; }
 
  private:
   std::size_t k_;
-  std::size_t randoms_;  // 4 + number of AR1 terms
+  std::size_t randoms_;  // 4 + number of AR1 terms (+ 1 for a mixture, last)
+  bool mixture_ = false;
   std::vector<double> products_;
   std::vector<double> tau_s_;
 };
@@ -132,10 +142,18 @@ struct GmwmOptions {
   int bootstrap = 0;
   std::uint64_t seed = 1;
   unsigned threads = 0;
+  /// BGM: correlation times per decade of its mixture (gmwm_flicker.hpp; 1..4).
+  int flicker_states_per_decade = 2;
+  /// Robust GMWM (Guerrier, Molinari, Victoria-Feser, JASA 2014): each scale's wavelet variance
+  /// is a Tukey-biweight M-estimate of the scale of the Haar coefficients (robust_wavelet.hpp),
+  /// tuned for robust_efficiency at the Gaussian and Fisher-consistent there; the covariance of
+  /// the estimates is the analytic one divided by that efficiency. Needs the phase samples.
+  bool robust = false;
+  double robust_efficiency = 0.6;
   bool IsValid(std::string* error) const;
 };
 
-/// Parses "N,K,GM,GM" (Q N B K R GM SIN, GM repeated) or "auto"; InputError otherwise.
+/// Parses "N,K,GM,GM" (Q N B K R GM SIN BGM, GM repeated) or "auto"; InputError otherwise.
 void parse_gmwm_terms(std::string_view list, GmwmOptions& options);
 
 /// One term of the fitted model, SI.
@@ -149,6 +167,9 @@ struct GmwmTermEstimate {
   /// Bootstrap percentile intervals (NaN when not run).
   double magnitude_boot_low = 0.0, magnitude_boot_high = 0.0;
   double shape_boot_low = 0.0, shape_boot_high = 0.0;
+  /// BGM: the Gauss-Markov states it stands for (sigma_i = B sqrt(w_i) with B's interval and
+  /// verdict; T_i fixed by the mixture), by correlation time.
+  std::vector<GaussMarkovTerm> states;
 };
 
 /// One candidate of the model selection (or the one requested model).
@@ -195,6 +216,12 @@ struct GmwmResult {
   std::vector<GmwmScale> scales;
   int bootstrap_replicates = 0;  ///< replicates that converged
   std::uint64_t seed = 0;
+  /// BGM: the mixture used (empty otherwise).
+  FlickerMixture flicker_mixture;
+  /// Robust estimates (GmwmOptions::robust): the efficiency used and its biweight constant.
+  bool robust = false;
+  double robust_efficiency = 1.0;
+  double robust_tuning = 0.0;
   std::vector<std::string> warnings;
 };
 
@@ -202,8 +229,10 @@ struct GmwmResult {
 /// two are used: the dyadic scales), avar: the estimates (SI), n_phase phase samples, tau0_s
 /// the sample interval. Throws InputError for invalid options or a model with more parameters
 /// than the curve has dyadic scales (status too_few_scales is then not used); numerical
-/// outcomes are in status.
+/// outcomes are in status. phase_si: the record's phase samples (n_phase of them), needed by
+/// options.robust only (the robust estimates replace avar; InputError without them).
 GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar,
-                    std::size_t n_phase, double tau0_s, const GmwmOptions& options);
+                    std::size_t n_phase, double tau0_s, const GmwmOptions& options,
+                    std::span<const double> phase_si = {});
 
 }  // namespace imunoise::fit
