@@ -483,6 +483,12 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
         cand.dof = dof;
         cand.j_p_value = chi2_upper(j, dof);
         cand.penalty = wvic_penalty(wh, sigma_ref, d, fixed);
+        // A sinusoid's frequency is the best of about k resolvable ones (one per dyadic scale):
+        // the largest of k chi-square drops exceeds one by about 2 ln k, which the trace above
+        // does not count (without it white noise took a sinusoid, CliGmwm.BadInput...).
+        if (std::count(candidates[i].begin(), candidates[i].end(), GmwmTerm::SIN) > 0) {
+          cand.penalty += 2.0 * std::log(static_cast<double>(k));
+        }
         cand.wvic = cand.objective + cand.penalty;
         // Strictly better only: a larger candidate whose extra terms ran to their floor ties
         // with the smaller one it reduces to, and the smaller one is kept.
