@@ -483,11 +483,13 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
         cand.dof = dof;
         cand.j_p_value = chi2_upper(j, dof);
         cand.penalty = wvic_penalty(wh, sigma_ref, d, fixed);
-        // A sinusoid's frequency is the best of about k resolvable ones (one per dyadic scale):
-        // the largest of k chi-square drops exceeds one by about 2 ln k, which the trace above
-        // does not count (without it white noise took a sinusoid, CliGmwm.BadInput...).
+        // A sinusoid's frequency is the best of about k resolvable ones (one per dyadic scale),
+        // which the trace above does not count: under white noise the largest of k chi^2(2)
+        // drops exceeds x with probability ~ k exp(-x / 2), so 2 ln(20 k) more holds a
+        // spurious sinusoid to ~5 % before the trace's own share (without it white noise took
+        // one, CliGmwm.BadInput...; docs/fit.md has the measured rates).
         if (std::count(candidates[i].begin(), candidates[i].end(), GmwmTerm::SIN) > 0) {
-          cand.penalty += 2.0 * std::log(static_cast<double>(k));
+          cand.penalty += 2.0 * std::log(20.0 * static_cast<double>(k));
         }
         cand.wvic = cand.objective + cand.penalty;
         // Strictly better only: a larger candidate whose extra terms ran to their floor ties

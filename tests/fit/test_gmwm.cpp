@@ -330,14 +330,24 @@ Coverage monte_carlo(int runs, double hours, bool select, std::uint64_t seed0) {
     const auto c = gmwm_test::octave_curve(rate, kTau0);
     GmwmOptions o;
     parse_gmwm_terms("N,K,GM,GM", o);
+    // IMUNOISE_GMWM_BOOTSTRAP=R: the parametric bootstrap's percentile intervals instead.
+    const int boot = std::getenv("IMUNOISE_GMWM_BOOTSTRAP") ? std::atoi(std::getenv("IMUNOISE_GMWM_BOOTSTRAP")) : 0;
+    o.bootstrap = boot;
+    o.seed = seed0 + 7919 * static_cast<std::uint64_t>(r);
     const GmwmResult g = fit_gmwm(c.m, c.avar, c.n_phase, kTau0, o);
     if (g.terms.size() != 4) continue;
     const Coefficient* est[6] = {&g.terms[0].magnitude, &g.terms[1].magnitude, &g.terms[2].magnitude,
                                  &g.terms[2].shape,     &g.terms[3].magnitude, &g.terms[3].shape};
+    const GmwmTermEstimate* term_of[6] = {&g.terms[0], &g.terms[1], &g.terms[2], &g.terms[2], &g.terms[3], &g.terms[3]};
     ++cov.runs;
     for (int p = 0; p < 6; ++p) {
       // A term reported not identified covers with [0, upper limit] (the report's convention).
-      const double lo = est[p]->ci_low, hi = est[p]->ci_high;
+      double lo = est[p]->ci_low, hi = est[p]->ci_high;
+      if (boot > 0) {
+        const bool shape = p == 3 || p == 5;
+        lo = shape ? term_of[p]->shape_boot_low : term_of[p]->magnitude_boot_low;
+        hi = shape ? term_of[p]->shape_boot_high : term_of[p]->magnitude_boot_high;
+      }
       cov.covered[p] += lo <= truth[p] && truth[p] <= hi;
       const double value = est[p]->identified ? est[p]->value : (p % 2 == 1 && p > 1 ? est[p]->value : 0.0);
       const double rel = value / truth[p] - 1.0;
@@ -349,6 +359,7 @@ Coverage monte_carlo(int runs, double hours, bool select, std::uint64_t seed0) {
       parse_gmwm_terms("auto", a);
       const GmwmResult s = fit_gmwm(c.m, c.avar, c.n_phase, kTau0, a);
       cov.selected_true += s.model == "N+K+GM+GM";
+      if (std::getenv("IMUNOISE_GMWM_VERBOSE") && s.model != "N+K+GM+GM") std::printf("  run %d: auto picked %s\n", r, s.model.c_str());
     }
   }
   return cov;
