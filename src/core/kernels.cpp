@@ -120,12 +120,8 @@ IMUNOISE_CLONES void compensated_prefix(const double* rate, std::size_t n, doubl
     sum = total[kLanes - 1];
     compensation += error[kLanes - 1];
   }
-  for (; i < n; ++i) {  // Neumaier's compensated addition
-    const double value = rate[i] - offset;
-    const double t = sum + value;
-    compensation += (sum >= 0 ? sum : -sum) >= (value >= 0 ? value : -value) ? (sum - t) + value
-                                                                             : (value - t) + sum;
-    sum = t;
+  for (; i < n; ++i) {
+    neumaier_add(sum, compensation, rate[i] - offset);
     out[i] = (sum + compensation) * tau0_s;
   }
   sum_io = sum;

@@ -2,9 +2,23 @@
 // Inner loops of the difference estimators: sums of squared finite differences of phase at
 // lag m over a contiguous run of start indices. Cloned for AVX2+FMA with a portable fallback
 // chosen at load time, so one binary runs everywhere and uses the wide units where present.
+#include <cmath>
 #include <cstddef>
 
 namespace imunoise::detail {
+
+/// Neumaier's compensated addition: sum + compensation carries the exact running total to
+/// about one ulp, so an integral stays correct over 1e9 samples. Always inlined: the clones
+/// in kernels.cpp must inline every callee.
+__attribute__((always_inline)) inline void neumaier_add(double& sum, double& compensation, double value) {
+  const double t = sum + value;
+  if (std::abs(sum) >= std::abs(value)) {
+    compensation += (sum - t) + value;
+  } else {
+    compensation += (value - t) + sum;
+  }
+  sum = t;
+}
 
 /// sum_{k<count} (x[k+2m] - 2 x[k+m] + x[k])^2
 double sum_sq_second_difference(const double* x, std::size_t m, std::size_t count);

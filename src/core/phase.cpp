@@ -6,21 +6,8 @@
 #include "kernels.hpp"
 
 namespace imunoise {
-namespace {
 
-// Neumaier's compensated addition: sum + compensation carries the exact running total to
-// about one ulp, so the integral stays correct over 1e9 samples.
-inline void neumaier_add(double& sum, double& compensation, double value) {
-  const double t = sum + value;
-  if (std::abs(sum) >= std::abs(value)) {
-    compensation += (sum - t) + value;
-  } else {
-    compensation += (value - t) + sum;
-  }
-  sum = t;
-}
-
-}  // namespace
+using detail::neumaier_add;
 
 double compensated_mean(std::span<const double> values) {
   if (values.empty()) return 0.0;
