@@ -115,14 +115,17 @@ ModelFit fit_model(const Layout& layout, const GmwmCurve& c, const Matrix& white
   Matrix g(k, static_cast<Eigen::Index>(layout.terms.size()));
   for (const auto& tcs : tc_sets) {
     for (double f0 : f_values) {
-      Vector p(layout.parameters);
+      // Every shape first: each term's unit column below evaluates the whole model (the other
+      // terms at a negligible magnitude), so no entry of p may be left unset.
+      Vector p = Vector::Zero(layout.parameters);
       for (std::size_t t = 0, gi = 0; t < layout.terms.size(); ++t) {
         double shape = 0.0;
         if (layout.terms[t] == GmwmTerm::GM) shape = tcs[gi++];
         if (layout.terms[t] == GmwmTerm::SIN) shape = f0;
         if (layout.shape[t] >= 0) p(layout.shape[t]) = std::clamp(std::log(shape), bounds.lo(layout.shape[t]), bounds.hi(layout.shape[t]));
-        Vector unit = Vector::Zero(layout.parameters);
-        unit = p;
+      }
+      for (std::size_t t = 0; t < layout.terms.size(); ++t) {
+        Vector unit = p;
         for (std::size_t u = 0; u < layout.terms.size(); ++u) unit(layout.magnitude[u]) = u == t ? 0.0 : -700.0;
         g.col(static_cast<Eigen::Index>(t)) = model_avar(layout, unit, c, nullptr);
       }
