@@ -20,9 +20,9 @@ double block_poison(const double* v, std::size_t n) {
 
 // The first non-finite index in [begin, end), or end.
 std::size_t scan(std::span<const double> values, std::size_t begin, std::size_t end) {
-  constexpr std::size_t kBlock = 4096;
-  for (std::size_t b = begin; b < end; b += kBlock) {
-    const std::size_t n = std::min(kBlock, end - b);
+  constexpr std::size_t kScanBlock = 4096;
+  for (std::size_t b = begin; b < end; b += kScanBlock) {
+    const std::size_t n = std::min(kScanBlock, end - b);
     if (block_poison(values.data() + b, n) == 0.0) continue;
     for (std::size_t i = b; i < b + n; ++i) {
       if (!std::isfinite(values[i])) return i;

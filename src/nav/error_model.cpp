@@ -11,6 +11,10 @@
 namespace imunoise::nav::detail {
 namespace {
 
+// The one matrix exponential of the module: Eigen instantiates its Pade machinery once per
+// argument type, and each instantiation cost this file seconds of compile time.
+Eigen::MatrixXd expm(const Eigen::MatrixXd& a) { return a.exp(); }
+
 double w0_of(const NavOptions& o) { return schuler::frequency_rad_s(o.earth.gravity_m_s2, o.earth.radius_m); }
 
 // A white-noise input: column g of the state equation with intensity (two-sided PSD) q.
@@ -30,7 +34,7 @@ Eigen::MatrixXd van_loan(const Eigen::MatrixXd& f, const Eigen::VectorXd& g, dou
   m.topLeftCorner(n, n) = -f * h;
   m.topRightCorner(n, n) = g * g.transpose() * h;
   m.bottomRightCorner(n, n) = f.transpose() * h;
-  const Eigen::MatrixXd e = m.exp();
+  const Eigen::MatrixXd e = expm(m);
   Eigen::MatrixXd qd = e.bottomRightCorner(n, n).transpose() * e.topRightCorner(n, n);
   return 0.5 * (qd + qd.transpose());
 }
@@ -41,7 +45,7 @@ Eigen::VectorXd step_input(const Eigen::MatrixXd& f, const Eigen::VectorXd& b, d
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n + 1, n + 1);
   m.topLeftCorner(n, n) = f * h;
   m.topRightCorner(n, 1) = b * h;
-  const Eigen::MatrixXd e = m.exp();
+  const Eigen::MatrixXd e = expm(m);
   return e.topRightCorner(n, 1);
 }
 
@@ -104,7 +108,7 @@ NavMatrix nav_dynamics(const NavOptions& o) {
 NavStep nav_step(const NavOptions& o) {
   const NavMatrix f = nav_dynamics(o);
   NavStep s;
-  s.phi = (f * o.dt_s).exp();
+  s.phi = expm(f * o.dt_s);
   const Eigen::MatrixXd fd = f;
   for (int a = 0; a < 3; ++a) {
     const SensorInput in = gyro_input(a);
@@ -213,7 +217,7 @@ DiscreteModel discrete_model(const NavOptions& o, const std::array<GyroTerms, 3>
   DiscreteModel d;
   d.phi = Eigen::MatrixXd::Zero(n, n);
   d.qd = Eigen::MatrixXd::Zero(n, n);
-  d.phi.topLeftCorner(n_continuous, n_continuous) = (f * h).exp();
+  d.phi.topLeftCorner(n_continuous, n_continuous) = expm(f * h);
   // Each source drives only its own state and, through it, the nav states: its Qd lives on
   // that sub-system, computed alone (so each keeps full relative precision) and added.
   for (const WhiteSource& s : sources) {
