@@ -98,14 +98,45 @@ DifferenceSums overlapping_difference_sums(std::span<const double> phase, int or
   const double* x = phase.data();
 
   const std::size_t block = near.size() > kDenseFactors ? kDenseBlock : kBlock;
+  // Runs of eight consecutive near factors (every factor, or a dense grid) share their windows:
+  // one kernel call reads each sample once for all eight. run_at[i]: near[i] starts a run.
+  std::vector<char> run_at(near.size(), 0);
+  if (difference_runs_available()) {
+    for (std::size_t i = 0; i + 8 <= near.size();) {
+      bool consecutive = true;
+      for (std::size_t j = 1; j < 8 && consecutive; ++j) consecutive = factors[near[i + j]] == factors[near[i]] + j;
+      if (consecutive) {
+        run_at[i] = 1;
+        i += 8;
+      } else {
+        ++i;
+      }
+    }
+  }
+  const auto run_kernel = order == 2 ? sum_sq_second_difference_run8 : sum_sq_third_difference_run8;
   auto run_chunk = [&](std::size_t c) {
     double* out = near_partial.data() + c * near.size();
     const std::size_t chunk_end = std::min(near_count, (c + 1) * chunk);
     for (std::size_t k0 = c * chunk; k0 < chunk_end; k0 += block) {
       const std::size_t k1 = std::min(chunk_end, k0 + block);
-      for (std::size_t i = 0; i < near.size(); ++i) {
+      for (std::size_t i = 0; i < near.size();) {
+        // The run's common starts are those of its largest factor (the fewest terms); the
+        // smaller factors' extra starts at the record's end go through the one-factor kernel.
+        const std::size_t common_end = run_at[i] ? std::min(k1, result.n[near[i + 7]]) : 0;
+        if (common_end > k0) {
+          double sums[8];
+          run_kernel(x + k0, factors[near[i]], common_end - k0, sums);
+          for (std::size_t j = 0; j < 8; ++j) {
+            out[i + j] += sums[j];
+            const std::size_t end = std::min(k1, result.n[near[i + j]]);
+            if (end > common_end) out[i + j] += kernel(x + common_end, factors[near[i + j]], end - common_end);
+          }
+          i += 8;
+          continue;
+        }
         const std::size_t end = std::min(k1, result.n[near[i]]);
         if (end > k0) out[i] += kernel(x + k0, factors[near[i]], end - k0);
+        ++i;
       }
     }
   };

@@ -1,5 +1,6 @@
 #include "kernels.hpp"
 
+#include <utility>
 #include <vector>
 
 // GCC builds AVX-512, AVX2+FMA and baseline clones, picked by the loader (ifunc).
@@ -84,6 +85,98 @@ IMUNOISE_CLONES double sum_sq_third_difference(const double* x, std::size_t m,
                                                std::size_t count) {
   return sum_sq_difference<3>(x, m, count);
 }
+
+#if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
+#define IMUNOISE_RUNS 1
+namespace {
+
+// Eight samples starting Off elements into the window w (consecutive loaded vectors).
+template <int Off, int Count>
+__attribute__((always_inline, target("avx512f,fma"))) inline Vec8 shifted(const Vec8 (&w)[Count]) {
+  constexpr int q = Off / 8;
+  constexpr int r = Off % 8;
+  if constexpr (r == 0) {
+    return w[q];
+  } else {
+    return __builtin_shufflevector(w[q], w[q + 1], r, r + 1, r + 2, r + 3, r + 4, r + 5, r + 6, r + 7);
+  }
+}
+
+template <int Count>
+__attribute__((always_inline, target("avx512f,fma"))) inline void load_window(const double* p, Vec8 (&w)[Count]) {
+  for (int q = 0; q < Count; ++q) w[q] = load(p + 8 * q);
+}
+
+// The term of factor m + J at the eight starts of the step, from the windows of each stream.
+template <int Order, int J>
+__attribute__((always_inline, target("avx512f,fma"))) inline Vec8 run_term(const Vec8& a, const Vec8 (&w1)[2],
+                                                                           const Vec8 (&w2)[3], const Vec8 (&w3)[4]) {
+  if constexpr (Order == 2) {
+    return shifted<2 * J>(w2) - 2.0 * shifted<J>(w1) + a;
+  } else {
+    return shifted<3 * J>(w3) - 3.0 * shifted<2 * J>(w2) + 3.0 * shifted<J>(w1) - a;
+  }
+}
+
+template <int Order, int J>
+__attribute__((always_inline, target("avx512f,fma"))) inline void add_term(Vec8& acc, const Vec8& a, const Vec8 (&w1)[2],
+                                                                           const Vec8 (&w2)[3], const Vec8 (&w3)[4]) {
+  const Vec8 d = run_term<Order, J>(a, w1, w2, w3);
+  acc += d * d;
+}
+
+template <int Order, std::size_t... J>
+__attribute__((always_inline, target("avx512f,fma"))) inline void run_sums(const double* x, std::size_t m,
+                                                                           std::size_t count, double* sums,
+                                                                           std::index_sequence<J...>) {
+  Vec8 acc[8] = {};
+  Vec8 w1[2], w2[3], w3[4];
+  std::size_t k = 0;
+  for (; k + kLanes <= count; k += kLanes) {
+    const Vec8 a = load(x + k);
+    load_window(x + k + m, w1);
+    load_window(x + k + 2 * m, w2);
+    if constexpr (Order == 3) load_window(x + k + 3 * m, w3);
+    (add_term<Order, static_cast<int>(J)>(acc[J], a, w1, w2, w3), ...);
+  }
+  for (std::size_t j = 0; j < 8; ++j) {
+    const Vec8& s = acc[j];
+    double sum = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+    const std::size_t f = m + j;
+    for (std::size_t i = k; i < count; ++i) {
+      double d;
+      if constexpr (Order == 2) {
+        d = x[i + 2 * f] - 2.0 * x[i + f] + x[i];
+      } else {
+        d = x[i + 3 * f] - 3.0 * x[i + 2 * f] + 3.0 * x[i + f] - x[i];
+      }
+      sum += d * d;
+    }
+    sums[j] = sum;
+  }
+}
+
+}  // namespace
+
+__attribute__((target("avx512f,fma"))) void sum_sq_second_difference_run8(const double* x, std::size_t m,
+                                                                          std::size_t count, double* sums) {
+  run_sums<2>(x, m, count, sums, std::make_index_sequence<8>{});
+}
+
+__attribute__((target("avx512f,fma"))) void sum_sq_third_difference_run8(const double* x, std::size_t m,
+                                                                         std::size_t count, double* sums) {
+  run_sums<3>(x, m, count, sums, std::make_index_sequence<8>{});
+}
+
+bool difference_runs_available() {
+  static const bool available = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("fma");
+  return available;
+}
+#else
+bool difference_runs_available() { return false; }
+void sum_sq_second_difference_run8(const double*, std::size_t, std::size_t, double*) {}
+void sum_sq_third_difference_run8(const double*, std::size_t, std::size_t, double*) {}
+#endif
 
 namespace {
 

@@ -26,6 +26,16 @@ double sum_sq_second_difference(const double* x, std::size_t m, std::size_t coun
 /// sum_{k<count} (x[k+3m] - 3 x[k+2m] + 3 x[k+m] - x[k])^2
 double sum_sq_third_difference(const double* x, std::size_t m, std::size_t count);
 
+/// Consecutive factors share their windows: the terms of factors m, m+1, ..., m+7 at the same
+/// starts read x[k + s (m + j)], shifts of one another. The sums of sum_sq_second_difference
+/// (Order 2) or sum_sq_third_difference (Order 3) for those eight factors over the same `count`
+/// starts, into sums[0..7]: each sample is loaded once for all eight and the shifted vectors are
+/// formed in registers (AVX-512 only: difference_runs_available(); one accumulator of eight lanes
+/// per factor, so the rounding differs from the one-factor kernels' in the last bits).
+bool difference_runs_available();
+void sum_sq_second_difference_run8(const double* x, std::size_t m, std::size_t count, double* sums);
+void sum_sq_third_difference_run8(const double* x, std::size_t m, std::size_t count, double* sums);
+
 /// The phase of n rate samples: out[k] = tau0_s ((sum + compensation) after adding y[0..k] -
 /// offset), the running total carried in (sum, compensation) from call to call. Eight samples
 /// per step: their running sum within the step in a vector (three shift-adds), then the carried

@@ -58,6 +58,22 @@ TEST_P(EveryEstimator, MatchesDefinitionForEveryFactor) {
   }
 }
 
+// Every factor of a longer record: consecutive factors run eight at a time through the shared
+// window kernel (AVX-512 machines) over several blocks of starts, with the smaller factors'
+// extra starts at the record's end done one factor at a time; both against the definition.
+TEST(EveryFactor, LongerRecordMatchesDefinition) {
+  for (const Estimator e : {Estimator::oadev, Estimator::ohdev}) {
+    const auto phase = phase_of(noise(4099, 17, 1.0), 0.01);
+    const std::size_t max_m = max_averaging_factor(e, phase.size());
+    std::vector<std::size_t> factors;
+    for (std::size_t m = 1; m <= max_m; ++m) factors.push_back(m);
+    for (const auto& p : compute_deviation(e, phase, 0.01, factors)) {
+      EXPECT_NEAR(p.dev / test::reference_deviation(e, phase, 0.01, p.m), 1.0, 1e-12)
+          << estimator_name(e) << " m=" << p.m;
+    }
+  }
+}
+
 // Long records take a second path for factors that are multiples of a power-of-two column
 // count (cache tiles); check it, and the ragged end of the record, against the definition.
 TEST(OverlappingTiles, MatchDefinitionOnLongRecordWithOctaveFactors) {
