@@ -82,8 +82,15 @@ std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Esti
       }
     }
 
+    if (out.noise.identified()) previous = out.noise.alpha;
+  }
+  // The EDF and the chi-squared quantiles of each point depend on its own noise type only:
+  // side by side (with every tau of a long record they are most of the intervals' time).
+  detail::parallel_for(points.size(), options.threads, [&](std::size_t index) {
+    DevPoint& point = points[index];
+    PointConfidence& out = info[index];
+    if (!finite_difference_proxy(estimator)) return;
     if (out.noise.identified()) {
-      previous = out.noise.alpha;
       point.alpha = out.noise.alpha;
       out.edf = edf(estimator, out.noise.alpha, point.m, n_phase);
       if (out.edf.method == EdfMethod::not_available) {
@@ -104,7 +111,7 @@ std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Esti
     const ConfidenceInterval ci = chi2_interval(point.dev, out.edf.value, options.level);
     point.ci_low = ci.low;
     point.ci_high = ci.high;
-  }
+  });
   return info;
 }
 
