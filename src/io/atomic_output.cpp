@@ -13,7 +13,18 @@ AtomicOutput::AtomicOutput(const std::string& path, bool force) : path_(path) {
     return;
   }
   namespace fs = std::filesystem;
-  if (fs::exists(path) && !force) {
+  std::error_code status_error;
+  const fs::file_status status = fs::status(path, status_error);
+  if (fs::is_directory(status)) {
+    throw InputError(path + ": is a directory; -o needs a file name");
+  }
+  if (fs::exists(status) && !fs::is_regular_file(status)) {
+    file_ = std::fopen(path.c_str(), "wb");
+    if (!file_) throw InputError(path + ": cannot open it for writing");
+    direct_ = true;
+    return;
+  }
+  if (fs::exists(status) && !force) {
     throw InputError(path + ": file exists; imunoise does not overwrite it — choose another -o name "
                      "or pass --force");
   }
@@ -25,6 +36,7 @@ AtomicOutput::AtomicOutput(const std::string& path, bool force) : path_(path) {
 AtomicOutput::~AtomicOutput() {
   if (file_ && file_ != stdout) {
     std::fclose(file_);
+    if (direct_) return;
     std::error_code ignored;
     std::filesystem::remove(temporary_, ignored);  // not committed: leave nothing behind
   }
@@ -45,7 +57,7 @@ void AtomicOutput::commit() {
   const bool ok = std::fclose(file_) == 0;
   file_ = nullptr;
   if (!ok) throw InputError(path_ + ": write failed (disk full?)");
-  std::filesystem::rename(temporary_, path_);
+  if (!direct_) std::filesystem::rename(temporary_, path_);
 }
 
 }  // namespace imunoise::io

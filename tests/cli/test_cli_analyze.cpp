@@ -224,7 +224,9 @@ TEST(CliAnalyze, DavarHeatMapAndVerdictInTheReport) {
   ASSERT_GE(gy["change_times_s"].size(), 1u);
   EXPECT_NEAR(gy["change_times_s"][0].get<double>(), 60.0, 10.0);
   for (std::size_t w = 0; w < gy["window_start_s"].size(); ++w) {
-    if (gy["window_start_s"][w].get<double>() + 20.0 <= 60.0) EXPECT_TRUE(gy["window_flagged"][w].get<bool>()) << w;
+    if (gy["window_start_s"][w].get<double>() + 20.0 <= 60.0) {
+      EXPECT_TRUE(gy["window_flagged"][w].get<bool>()) << w;
+    }
   }
   EXPECT_TRUE(std::filesystem::exists(out + "/figures/davar_gy.svg"));
   EXPECT_TRUE(std::filesystem::exists(out + "/figures/davar_gx.png"));

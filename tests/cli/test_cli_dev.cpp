@@ -153,6 +153,23 @@ TEST(CliDev, NeverOverwritesWithoutForce) {
   EXPECT_NE(test::slurp(out).find("oadev"), std::string::npos);
 }
 
+// A device or FIFO is not a file to protect, and a rename over it (the atomic write of a regular
+// file) would replace /dev/null itself for a root user: such targets are written in place.
+TEST(CliDev, WritesToDevNullInPlace) {
+  TempDir dir;
+  const auto in = dir.write("in.txt", column_text(test::nbs14_10_point_frequency()));
+  for (const bool force : {false, true}) {
+    std::vector<std::string> args{"dev", in, "--rate", "1", "-o", "/dev/null"};
+    if (force) args.push_back("--force");
+    const auto r = run_cli(args);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(std::filesystem::is_character_file("/dev/null"));
+    EXPECT_FALSE(std::filesystem::exists("/dev/null.imunoise-tmp"));
+  }
+  const auto r = run_cli({"dev", in, "--rate", "1", "-o", dir.file("")});
+  expect_input_error(r, {"is a directory"});
+}
+
 // ---- bad input: exit 1, a message naming where and how to fix, nothing on stdout ----
 
 TEST(CliDevBadInput, EmptyFile) {

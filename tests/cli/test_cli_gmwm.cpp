@@ -152,7 +152,9 @@ TEST(CliGmwm, AnalyzeFitsByGmwmAndItsFigureDrawsEveryGaussMarkovTerm) {
   const auto& model = ch["model"];
   for (std::size_t i = 0; i < model["tau_s"].size(); ++i) {
     const double tau = model["tau_s"][i].get<double>();
-    if (tau > 150.0 && tau < 250.0) EXPECT_GT(model["adev"][i].get<double>(), 1e-3) << tau;
+    if (tau > 150.0 && tau < 250.0) {
+      EXPECT_GT(model["adev"][i].get<double>(), 1e-3) << tau;
+    }
   }
 }
 
@@ -199,7 +201,9 @@ TEST(CliGmwm, BadInputEndsWithAClearMessageOrATermNotIdentified) {
       << g["correlation_time_s"];
   EXPECT_FALSE(g["sigma"]["note"].get<std::string>().empty());
   const auto& n = doc["terms"]["N"];
-  if (!n["identified"].get<bool>()) EXPECT_NE(n["note"].get<std::string>().find("fix:"), std::string::npos) << n;
+  if (!n["identified"].get<bool>()) {
+    EXPECT_NE(n["note"].get<std::string>().find("fix:"), std::string::npos) << n;
+  }
   EXPECT_TRUE(nlohmann::json::parse(slurp(kf))["gauss_markov_states"].empty());
   const auto a = run_cli({"fit", white, "--rate", "100", "--units", "deg/s", "--method", "gmwm", "--terms", "auto"});
   ASSERT_EQ(a.exit_code, 0) << a.err;
