@@ -1,8 +1,6 @@
 #include "imunoise/redundant/fused_csv.hpp"
 
 #include <algorithm>
-#include <cstdio>
-#include <filesystem>
 #include <functional>
 #include <iterator>
 #include <thread>
@@ -11,20 +9,14 @@
 #include <fmt/format.h>
 
 #include "imunoise/error.hpp"
+#include "imunoise/io/atomic_output.hpp"
 
 namespace imunoise::redundant {
 
 void write_fused_csv(const std::string& path, bool force, const FusedRecord& fused, const Unit& unit,
                      const std::string& geometry, unsigned threads) {
-  namespace fs = std::filesystem;
-  const fs::path target(path);
-  if (fs::exists(target) && !force) {
-    throw InputError(path + ": file exists; imunoise does not overwrite it — choose another "
-                                "-o name or pass --force");
-  }
-  const fs::path temporary = target.string() + ".imunoise-tmp";
-  std::FILE* out = std::fopen(temporary.c_str(), "wb");
-  if (!out) throw InputError(path + ": cannot create the file; check the directory");
+  // Never over an existing file without --force; written beside it and renamed on success.
+  io::AtomicOutput out(path, force);
   fmt::memory_buffer buf;
   fmt::format_to(std::back_inserter(buf),
                  "# imunoise redundant: fused body rates x,y,z and {} parity residual(s) p "
@@ -35,7 +27,7 @@ void write_fused_csv(const std::string& path, bool force, const FusedRecord& fus
   buf.push_back('\n');
   const double f = 1.0 / unit.to_si;
   const double tau0 = 1.0 / fused.rate_hz;
-  bool ok = std::fwrite(buf.data(), 1, buf.size(), out) == buf.size();
+  out.write(buf.data(), buf.size());
   buf.clear();
   // Formatting dominates (~20 numbers a row): blocks of rows are formatted in parallel and
   // written in order.
@@ -59,16 +51,10 @@ void write_fused_csv(const std::string& path, bool force, const FusedRecord& fus
     }
     format_rows(start, std::min(fused.samples, start + kRows), blocks[0]);
     for (auto& t : pool) t.join();
-    for (const auto& b : blocks) ok = ok && std::fwrite(b.data(), 1, b.size(), out) == b.size();
+    for (const auto& b : blocks) out.write(b.data(), b.size());
     for (auto& b : blocks) b.clear();
   }
-  ok = ok && std::fwrite(buf.data(), 1, buf.size(), out) == buf.size();
-  ok = std::fclose(out) == 0 && ok;
-  if (!ok) {
-    fs::remove(temporary);
-    throw InputError(path + ": write failed (disk full?)");
-  }
-  fs::rename(temporary, target);
+  out.commit();
 }
 
 }  // namespace imunoise::redundant
