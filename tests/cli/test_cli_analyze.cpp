@@ -55,6 +55,33 @@ TEST(CliAnalyze, WritesTheReportOfEveryColumn) {
   EXPECT_EQ(forced.exit_code, 0) << forced.err;
 }
 
+// The fit options are the fit command's: analyze --method gmwm --robust fits every channel by
+// the robust GMWM, and the channel's fit document is the one `fit` writes for that column.
+TEST(CliAnalyze, RobustGmwmReachesEveryChannelAsInFit) {
+  TempDir dir;
+  const auto file = dir.write("imu.csv", csv_record(20000, 100.0, 4));
+  const auto out = dir.file("report");
+  const auto r = run_cli({"analyze", file, "--time-column", "t", "--units", "deg/s", "--method", "gmwm",
+                          "--terms", "N", "--robust", "-o", out, "--quiet"});
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const auto doc = nlohmann::json::parse(slurp(out + "/report.json"));
+  ASSERT_EQ(doc["channels"].size(), 2u);
+  for (const auto& channel : doc["channels"]) {
+    EXPECT_EQ(channel["fit"]["method"], "gmwm");
+    EXPECT_TRUE(channel["fit"]["gmwm"]["robust"].get<bool>()) << channel["name"];
+  }
+  const auto fit = run_cli({"fit", file, "--time-column", "t", "--column", "gy", "--units", "deg/s", "--method",
+                            "gmwm", "--terms", "N", "--robust"});
+  ASSERT_EQ(fit.exit_code, 0) << fit.err;
+  EXPECT_EQ(doc["channels"][1]["fit"]["terms"], nlohmann::json::parse(fit.out)["terms"]);
+  // Without --method gmwm the flag is refused before any work: no report directory.
+  const auto bad = run_cli({"analyze", file, "--time-column", "t", "--units", "deg/s", "--robust", "-o",
+                            dir.file("none"), "--quiet"});
+  EXPECT_EQ(bad.exit_code, 1);
+  EXPECT_NE(bad.err.find("--robust needs --method gmwm"), std::string::npos) << bad.err;
+  EXPECT_FALSE(std::filesystem::exists(dir.file("none")));
+}
+
 // The terminal gets one line a channel (what was fitted, how many diagnostics); --verbose adds
 // every diagnostic, which the report holds in any case.
 TEST(CliAnalyze, OneLineAChannelAndEveryDiagnosticWithVerbose) {

@@ -196,6 +196,18 @@ TEST(FleetCli, MethodGmwmReachesEverySensorsFit) {
   }
   EXPECT_EQ(gmwm, 7);
   EXPECT_EQ(doc["summary"]["coefficients"]["N"]["n_identified"], 7);
+  // --robust too: every sensor's fit says it is the robust GMWM.
+  const std::string robust_out = out_dir.file("robust");
+  const auto robust = run_cli(fleet.args(robust_out, {"--method", "gmwm", "--terms", "N,K", "--robust"}));
+  ASSERT_EQ(robust.exit_code, 0) << robust.err;
+  int robust_fits = 0;
+  const auto robust_doc = nlohmann::json::parse(slurp(robust_out + "/fleet.json"));
+  for (const auto& s : robust_doc["sensors"]) {
+    if (s["fit"].is_null()) continue;
+    EXPECT_TRUE(s["fit"]["gmwm"]["robust"].get<bool>());
+    ++robust_fits;
+  }
+  EXPECT_EQ(robust_fits, 7);
 }
 
 TEST(FleetCli, NavigationErrorPerSensorAndItsDistribution) {
