@@ -131,8 +131,11 @@ __attribute__((always_inline, target("avx512f,fma"))) inline void run_sums(const
                                                                            std::index_sequence<J...>) {
   Vec8 acc[8] = {};
   Vec8 w1[2], w2[3], w3[4];
+  // The last stream's whole vectors reach 2 (Order 2) or 3 (Order 3) samples past the last one
+  // the eighth factor's term needs, which may be the record's last: those starts go scalar.
+  constexpr std::size_t kSlack = Order == 2 ? 2 : 3;
   std::size_t k = 0;
-  for (; k + kLanes <= count; k += kLanes) {
+  for (; k + kLanes + kSlack <= count; k += kLanes) {
     const Vec8 a = load(x + k);
     load_window(x + k + m, w1);
     load_window(x + k + 2 * m, w2);
