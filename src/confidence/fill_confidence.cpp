@@ -86,10 +86,10 @@ std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Esti
   }
   // The EDF and the chi-squared quantiles of each point depend on its own noise type only:
   // side by side (with every tau of a long record they are most of the intervals' time).
+  if (!finite_difference_proxy(estimator)) return info;
   detail::parallel_for(points.size(), options.threads, [&](std::size_t index) {
     DevPoint& point = points[index];
     PointConfidence& out = info[index];
-    if (!finite_difference_proxy(estimator)) return;
     if (out.noise.identified()) {
       point.alpha = out.noise.alpha;
       out.edf = edf(estimator, out.noise.alpha, point.m, n_phase);

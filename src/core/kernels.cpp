@@ -87,7 +87,6 @@ IMUNOISE_CLONES double sum_sq_third_difference(const double* x, std::size_t m,
 }
 
 #if defined(__GNUC__) && defined(__x86_64__) && !defined(__clang__)
-#define IMUNOISE_RUNS 1
 namespace {
 
 // Eight samples starting Off elements into the window w (consecutive loaded vectors).
@@ -145,17 +144,8 @@ __attribute__((always_inline, target("avx512f,fma"))) inline void run_sums(const
   for (std::size_t j = 0; j < 8; ++j) {
     const Vec8& s = acc[j];
     double sum = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
-    const std::size_t f = m + j;
-    for (std::size_t i = k; i < count; ++i) {
-      double d;
-      if constexpr (Order == 2) {
-        d = x[i + 2 * f] - 2.0 * x[i + f] + x[i];
-      } else {
-        d = x[i + 3 * f] - 3.0 * x[i + 2 * f] + 3.0 * x[i + f] - x[i];
-      }
-      sum += d * d;
-    }
-    sums[j] = sum;
+    // The last few starts (fewer than 8 + kSlack) by the one-factor kernel's own loop.
+    sums[j] = sum + sum_sq_difference<Order>(x + k, m + j, count - k);
   }
 }
 
