@@ -43,8 +43,11 @@ MappedFile::~MappedFile() {
 
 void MappedFile::release_before(std::size_t end) {
   static const auto page = static_cast<std::size_t>(::sysconf(_SC_PAGESIZE));
+  // In steps of at least 1 MB: a reader that takes 64 KB blocks would otherwise make a system
+  // call per block (and the kernel's read-ahead works in larger units anyway).
+  constexpr std::size_t kStep = std::size_t{1} << 20;
   const std::size_t upto = std::min(end, size_) / page * page;
-  if (upto > released_) {
+  if (upto > released_ && (upto - released_ >= kStep || end >= size_)) {
     ::madvise(const_cast<unsigned char*>(data_) + released_, upto - released_, MADV_DONTNEED);
     released_ = upto;
   }
