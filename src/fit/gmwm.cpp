@@ -446,4 +446,28 @@ LmResult levenberg_marquardt(const Layout& layout, const GmwmCurve& c, const Mat
 }
 
 }  // namespace detail
+
+double gmwm_model_avar(const GmwmResult& result, double tau0_s, std::size_t m) {
+  if (result.status != GmwmStatus::converged || m == 0) return 0.0;
+  const double tau = static_cast<double>(m) * tau0_s;
+  double avar = 0.0;
+  for (const auto& e : result.terms) {
+    const double unit = [&] {
+      switch (e.kind) {
+        case GmwmTerm::Q: return gmwm_avar_quantization(tau);
+        case GmwmTerm::N: return gmwm_avar_white(tau);
+        case GmwmTerm::B: return gmwm_avar_flicker(tau);
+        case GmwmTerm::K: return gmwm_avar_random_walk(tau);
+        case GmwmTerm::R: return gmwm_avar_ramp(tau);
+        case GmwmTerm::GM: return gmwm_avar_ar1(e.shape_fitted, tau0_s, m);
+        case GmwmTerm::SIN: return gmwm_avar_sinusoid(e.shape_fitted, tau);
+        case GmwmTerm::BGM: return gmwm_avar_flicker_mixture(result.flicker_mixture, tau0_s, m);
+      }
+      return 0.0;
+    }();
+    avar += e.magnitude_fitted * e.magnitude_fitted * unit;
+  }
+  return avar;
+}
+
 }  // namespace imunoise::fit

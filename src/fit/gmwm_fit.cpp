@@ -584,6 +584,7 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
     const double mag = std::exp(0.5 * lm.p(j));
     const bool floor = fixed[static_cast<std::size_t>(j)];
     e.magnitude.value = mag;
+    e.magnitude_fitted = mag;
     e.magnitude.ci_low = std::isfinite(sd) ? std::exp(0.5 * (lm.p(j) - zq * sd)) : 0.0;
     e.magnitude.ci_high = std::isfinite(sd) ? std::exp(0.5 * (lm.p(j) + zq * sd))
                                             : std::exp(0.5 * bounds.hi(j));
@@ -597,6 +598,7 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
       const Eigen::Index s = layout.shape[t];
       const double ssd = std::sqrt(cov(s, s));
       e.shape.value = std::exp(lm.p(s));
+      e.shape_fitted = e.shape.value;
       e.shape.ci_low = std::isfinite(ssd) ? std::exp(lm.p(s) - zq * ssd) : 0.0;
       e.shape.ci_high = std::isfinite(ssd) ? std::exp(lm.p(s) + zq * ssd) : std::numeric_limits<double>::infinity();
       e.shape.identified = e.magnitude.identified && std::isfinite(ssd);
@@ -656,6 +658,7 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
         coef->note = stopped;
       }
       e.magnitude.value = 0.0;
+      e.magnitude_fitted = 0.0;
       e.magnitude.ci_low = 0.0;
       e.magnitude.ci_high = std::numeric_limits<double>::quiet_NaN();
     }

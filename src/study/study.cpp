@@ -13,6 +13,8 @@
 
 #include "imunoise/error.hpp"
 #include "imunoise/nav/imu_axes.hpp"
+#include "imunoise/fit/extra_terms.hpp"
+#include "imunoise/fit/gmwm.hpp"
 #include "imunoise/fit/report.hpp"
 #include "imunoise/nav/navigation.hpp"
 #include "imunoise/nav/report.hpp"
@@ -62,6 +64,10 @@ std::string quantity_key(const Record& rec) {
 
 std::string short_number(double v) { return fmt::format("{:.3g}", v); }
 
+// A sinusoid's Allan deviation A sin^2(x) / x, x = pi f tau, peaks where tan x = 2 x:
+// x = 1.16556, tau = 0.37101 / f.
+constexpr double kSinusoidPeakTimesPeriod = 0.37101;
+
 // The fitted model and each identified term's asymptote, in the record's unit, on a dense
 // log grid over the curve's taus. Asymptotes are cut where they leave the figure (a decade
 // beyond the curve's range of values) so that they do not squash its scale.
@@ -77,24 +83,43 @@ nlohmann::json model_json(const Record& record, const Curve& oadev, const fit::F
     dev_hi = std::max(dev_hi, p.dev);
   }
   if (!(tau_hi > tau_lo)) return nullptr;
-  constexpr int kPoints = 80;
-  std::vector<double> taus(kPoints);
+  // A sinusoid's lobes need a finer grid to be drawn as curves rather than zigzags.
+  const bool has_sinusoid = r.coefficients.sinusoid.has_value();
+  const int kPoints = has_sinusoid ? 320 : 80;
+  std::vector<double> taus(static_cast<std::size_t>(kPoints));
   for (int i = 0; i < kPoints; ++i) {
     taus[static_cast<std::size_t>(i)] =
         tau_lo * std::pow(tau_hi / tau_lo, static_cast<double>(i) / (kPoints - 1));
   }
   const auto& c = r.coefficients;
+  // gmwm: the curve of the model as fitted (a term kept by the selection but not significant
+  // still shapes it), on the sample lattice where its AR1 forms are exact.
+  const double tau0_s = 1.0 / record.rate_hz;
+  const bool from_gmwm = r.gmwm && r.gmwm->status == fit::GmwmStatus::converged;
+  if (from_gmwm) {
+    for (double& tau : taus) tau = std::max(1.0, std::round(tau / tau0_s)) * tau0_s;
+    taus.erase(std::unique(taus.begin(), taus.end()), taus.end());
+  }
+  const auto sinusoid_shown = c.sinusoid && c.sinusoid->amplitude.identified && c.sinusoid->frequency_hz.identified;
   std::vector<double> total;
   for (double tau : taus) {
     double avar = 0.0;
-    for (int j = 0; j < fit::kTermCount; ++j) {
-      const double v = fit::coefficient(c, j).value;
-      avar += v * v * fit::term_basis(j, tau);
-    }
-    for (const auto& gm : c.gauss_markov) {
-      if (!identified(gm)) continue;
-      const double g = gauss_markov_adev(gm.sigma.value, gm.correlation_time_s.value, tau);
-      avar += g * g;
+    if (from_gmwm) {
+      avar = fit::gmwm_model_avar(*r.gmwm, tau0_s, static_cast<std::size_t>(std::llround(tau / tau0_s)));
+    } else {
+      for (int j = 0; j < fit::kTermCount; ++j) {
+        const double v = fit::coefficient(c, j).value;
+        avar += v * v * fit::term_basis(j, tau);
+      }
+      for (const auto& gm : c.gauss_markov) {
+        if (!identified(gm)) continue;
+        const double g = gauss_markov_adev(gm.sigma.value, gm.correlation_time_s.value, tau);
+        avar += g * g;
+      }
+      if (sinusoid_shown) {
+        const double a = c.sinusoid->amplitude.value;
+        avar += a * a * fit::sinusoid_basis(c.sinusoid->frequency_hz.value, tau);
+      }
     }
     total.push_back(std::sqrt(avar) / f);
   }
@@ -144,9 +169,32 @@ nlohmann::json model_json(const Record& record, const Curve& oadev, const fit::F
                      {"adev", std::move(ys)},
                      {"anchor", {{"tau_s", at}, {"adev", gauss_markov_adev(sigma, tc, at) / f}}}});
   }
+  // The sinusoid's own curve: its Allan deviation A sin^2(pi f tau) / (pi f tau), peaking near
+  // tau = 0.371 / f.
+  if (sinusoid_shown) {
+    const double a = c.sinusoid->amplitude.value, f0 = c.sinusoid->frequency_hz.value;
+    nlohmann::json xs = nlohmann::json::array(), ys = nlohmann::json::array();
+    for (double tau : taus) {
+      const double y = a * std::sqrt(fit::sinusoid_basis(f0, tau)) / f;
+      if (y < dev_lo / 10.0 || y > dev_hi * 10.0) continue;
+      xs.push_back(tau);
+      ys.push_back(y);
+    }
+    const double at = std::clamp(kSinusoidPeakTimesPeriod / f0, tau_lo, tau_hi);
+    terms.push_back({{"symbol", "SIN"},
+                     {"label", fmt::format("SIN: A = {} {}, f = {} Hz", short_number(a / f), unit_label(record),
+                                           short_number(f0))},
+                     {"tau_s", std::move(xs)},
+                     {"adev", std::move(ys)},
+                     {"anchor", {{"tau_s", at}, {"adev", a * std::sqrt(fit::sinusoid_basis(f0, at)) / f}}}});
+  }
   return {{"unit", unit_label(record)},
-          {"what", "fitted Allan deviation (eq. 5 with every Gauss-Markov term), each identified power-law "
-                   "term's asymptote and each Gauss-Markov term's curve"},
+          {"what", from_gmwm ? "fitted Allan deviation of the gmwm model, every term at its fitted value (also "
+                               "those not significant), each identified power-law term's asymptote, each "
+                               "Gauss-Markov term's curve and the sinusoid's"
+                             : "fitted Allan deviation (eq. 5 with every Gauss-Markov term and the sinusoid), "
+                               "each identified power-law term's asymptote, each Gauss-Markov term's curve and "
+                               "the sinusoid's"},
           {"tau_s", taus},
           {"adev", total},
           {"terms", std::move(terms)}};

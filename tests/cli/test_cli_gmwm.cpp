@@ -135,8 +135,11 @@ TEST(CliGmwm, AnalyzeFitsByGmwmAndItsFigureDrawsEveryGaussMarkovTerm) {
   TempDir dir;
   const std::string out = dir.file("report");
   const auto r = run_cli({"analyze", rec.file, "--binary", "f64", "--rate", "100", "--units", "deg/s", "--method",
-                          "gmwm", "--terms", "N,GM,GM", "-o", out, "--quiet"});
+                          "gmwm", "--terms", "N,GM,GM", "-o", out});
   ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The one line per channel names the gmwm model and its GM terms, not Q B K "not identified".
+  EXPECT_NE(r.err.find("gmwm model N+GM+GM (GM T_c "), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("not identified: Q"), std::string::npos) << r.err;
   const auto doc = nlohmann::json::parse(slurp(out + "/report.json"));
   ASSERT_EQ(doc["channels"].size(), 1u);
   const auto& ch = doc["channels"][0];
@@ -156,6 +159,26 @@ TEST(CliGmwm, AnalyzeFitsByGmwmAndItsFigureDrawsEveryGaussMarkovTerm) {
       EXPECT_GT(model["adev"][i].get<double>(), 1e-3) << tau;
     }
   }
+  // It is the model the fit matched: at each dyadic tau (log-log between the grid's points, a
+  // factor 1.2 apart, where the curve bends by well under 1 %) it is sqrt(2 wv_model).
+  const auto& scales = ch["fit"]["gmwm"]["wavelet_variance"];
+  ASSERT_GT(scales.size(), 5u);
+  std::size_t checked = 0;
+  for (const auto& sc : scales) {
+    const double tau = sc["tau_s"].get<double>();
+    const double expect = std::sqrt(2.0 * sc["wv_model"].get<double>());
+    for (std::size_t i = 0; i + 1 < model["tau_s"].size(); ++i) {
+      const double t0 = model["tau_s"][i].get<double>(), t1 = model["tau_s"][i + 1].get<double>();
+      if (!(t0 <= tau && tau <= t1)) continue;
+      const double w = std::log(tau / t0) / std::log(t1 / t0);
+      const double y = std::exp((1.0 - w) * std::log(model["adev"][i].get<double>()) +
+                                w * std::log(model["adev"][i + 1].get<double>()));
+      EXPECT_NEAR(y / expect, 1.0, 0.01) << "tau " << tau;
+      ++checked;
+      break;
+    }
+  }
+  EXPECT_EQ(checked, scales.size());  // the grid spans the curve's taus
 }
 
 TEST(CliGmwm, BadInputEndsWithAClearMessageOrATermNotIdentified) {

@@ -164,6 +164,13 @@ struct GmwmTermEstimate {
   Coefficient magnitude;
   /// GM: correlation time (s); SIN: frequency (Hz); unused (NaN bounds) otherwise.
   Coefficient shape;
+  /// The optimiser's magnitude, also for a term not identified (whose magnitude.value is 0 by
+  /// the convention of every fit): the model that GmwmScale::wv_model and the report's model
+  /// curve are. 0 when the fit did not converge (the last iterate is no estimate).
+  double magnitude_fitted = 0.0;
+  /// GM, SIN: the optimiser's correlation time or frequency, kept likewise (shape.value may be
+  /// set to 0 where the term is not identified).
+  double shape_fitted = 0.0;
   /// Bootstrap percentile intervals (NaN when not run).
   double magnitude_boot_low = 0.0, magnitude_boot_high = 0.0;
   double shape_boot_low = 0.0, shape_boot_high = 0.0;
@@ -224,6 +231,11 @@ struct GmwmResult {
   double robust_tuning = 0.0;
   std::vector<std::string> warnings;
 };
+
+/// Allan variance (SI, 2 x the Haar wavelet variance) of the fitted model at tau = m tau0_s,
+/// every term at its fitted magnitude (GmwmTermEstimate::magnitude_fitted, so a term kept in
+/// the model but not significant still counts, as in the fit). 0 without a converged fit.
+double gmwm_model_avar(const GmwmResult& result, double tau0_s, std::size_t m);
 
 /// The GMWM fit of an overlapping Allan variance curve. m: averaging factors (only powers of
 /// two are used: the dyadic scales), avar: the estimates (SI), n_phase phase samples, tau0_s
