@@ -198,6 +198,79 @@ std::string fixed(double v, int digits) {
   return std::isfinite(v) ? fmt::format("{:.{}g}", v, digits) : std::string("–");
 }
 
+// gmwm: a power-law term outside the selected model was not tried (not "not identified").
+bool outside_gmwm_model(const json& ch, const std::string& term) {
+  if (ch["fit"].is_null() || !ch["fit"].contains("gmwm")) return false;
+  const std::string model = "+" + str(ch["fit"]["gmwm"]["model"]) + "+";
+  return model.find("+" + term + "+") == std::string::npos;
+}
+
+// The correlated and periodic terms (every GM, by correlation time, and the sinusoid) of every
+// channel, whatever the method: the power-law table has no column for them.
+struct ExtraTermRow {
+  std::string channel, term;
+  TermText magnitude, shape;
+  std::string shape_name;  // "T_c" or "f"
+};
+
+std::vector<ExtraTermRow> extra_term_rows(const json& doc) {
+  std::vector<ExtraTermRow> rows;
+  for (const auto& ch : doc["channels"]) {
+    if (ch["fit"].is_null()) continue;
+    const auto& terms = ch["fit"]["terms"];
+    int index = 0;
+    if (terms.contains("GM") && terms["GM"].is_array()) {
+      for (const auto& gm : terms["GM"]) {
+        rows.push_back({str(ch["name"]), fmt::format("GM{}", ++index), term_text(gm["sigma"]),
+                        term_text(gm["correlation_time_s"]), "T_c"});
+      }
+    }
+    if (terms.contains("SIN") && terms["SIN"].is_object() && terms["SIN"].contains("amplitude")) {
+      rows.push_back({str(ch["name"]), "SIN", term_text(terms["SIN"]["amplitude"]),
+                      term_text(terms["SIN"]["frequency_hz"]), "f"});
+    }
+  }
+  return rows;
+}
+
+// gmwm --terms auto: per channel the selected model, its J test and WVIC, and the runner-up
+// (the whole candidate table is in report.json, fit.gmwm.candidates).
+struct SelectionRow {
+  std::string channel, model, j, wvic, runner_up;
+  std::size_t candidates = 0;
+};
+
+std::vector<SelectionRow> selection_rows(const json& doc) {
+  std::vector<SelectionRow> rows;
+  for (const auto& ch : doc["channels"]) {
+    if (ch["fit"].is_null() || !ch["fit"].contains("gmwm")) continue;
+    const auto& gm = ch["fit"]["gmwm"];
+    const auto& candidates = gm.value("candidates", json::array());
+    SelectionRow row{str(ch["name"]), str(gm["model"]),
+                     fmt::format("{} on {} dof (p = {})", g(gm["j_statistic"], 3), gm["dof"].dump(),
+                                 g(gm["j_p_value"], 2)),
+                     g(gm["wvic"], 5), "–", candidates.size()};
+    // Differences within the table, whose criteria share one weight matrix (the selected
+    // model's own WVIC above is at its final weight).
+    const json* selected = nullptr;
+    const json* best_other = nullptr;
+    for (const auto& c : candidates) {
+      if (c.value("selected", false)) {
+        selected = &c;
+        continue;
+      }
+      if (!c.value("converged", false)) continue;
+      if (best_other == nullptr || num(c["wvic"]) < num((*best_other)["wvic"])) best_other = &c;
+    }
+    if (selected != nullptr && best_other != nullptr) {
+      row.runner_up = fmt::format("{} (ΔWVIC {:+.3g})", str((*best_other)["model"]),
+                                  num((*best_other)["wvic"]) - num((*selected)["wvic"]));
+    }
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
 }  // namespace
 
 std::string file_stem(const std::string& id) {
@@ -242,10 +315,34 @@ std::string render_markdown(const json& doc) {
     if (ch["fit"].is_null()) continue;
     md += "| " + md_escape(str(ch["name"])) + " |";
     for (const auto& t : terms) {
+      if (outside_gmwm_model(ch, t)) {
+        md += " – (not in the model) |";
+        continue;
+      }
       const auto tt = term_text(ch["fit"]["terms"][t]);
       md += fmt::format(" {} {} {} |", tt.value, tt.unit, tt.identified ? tt.ci : "(not identified)");
     }
     md += " " + g(ch["fit"]["diagnostics"]["chi2_dof"], 3) + " |\n";
+  }
+  if (const auto extras = extra_term_rows(doc); !extras.empty()) {
+    md += "\nCorrelated and periodic terms (GM: first-order Gauss-Markov sigma and correlation time, by "
+          "correlation time; SIN: amplitude and frequency).\n\n| channel | term | magnitude | T_c or f |\n"
+          "|---|---|---|---|\n";
+    for (const auto& r : extras) {
+      md += fmt::format("| {} | {} | {} {} {} | {} = {} {} {} |\n", md_escape(r.channel), r.term, r.magnitude.value,
+                        r.magnitude.unit, r.magnitude.identified ? r.magnitude.ci : "(not identified)", r.shape_name,
+                        r.shape.value, r.shape.unit, r.shape.identified ? r.shape.ci : "(not identified)");
+    }
+  }
+  if (const auto selection = selection_rows(doc); !selection.empty()) {
+    md += "\n### Model selection (gmwm)\n\nThe model of least WVIC (wavelet variance information "
+          "criterion) among the candidates; J: the moment conditions' goodness of fit (chi² on its dof "
+          "for an exact model). Every candidate is in report.json (fit.gmwm.candidates).\n\n"
+          "| channel | model | J | WVIC | next best | candidates |\n|---|---|---|---:|---|---:|\n";
+    for (const auto& r : selection) {
+      md += fmt::format("| {} | {} | {} | {} | {} | {} |\n", md_escape(r.channel), r.model, r.j, r.wvic,
+                        r.runner_up, r.candidates);
+    }
   }
   bool any_spec = false;
   for (const auto& ch : doc["channels"]) any_spec = any_spec || !ch["spec_comparison"].is_null();
@@ -800,6 +897,10 @@ std::string render_html(const json& doc, const std::string& plotly_js) {
       continue;
     }
     for (const auto& t : terms) {
+      if (outside_gmwm_model(ch, t)) {
+        h += "<td class=\"num ni\">–<br><span class=\"ci\">not in the model</span></td>";
+        continue;
+      }
       const auto tt = term_text(ch["fit"]["terms"][t]);
       if (tt.identified) {
         h += fmt::format("<td class=\"num\">{} <span class=\"soft\">{}</span><br><span class=\"ci\">{}</span></td>",
@@ -812,6 +913,37 @@ std::string render_html(const json& doc, const std::string& plotly_js) {
     h += "<td class=\"num\">" + g(ch["fit"]["diagnostics"]["chi2_dof"], 3) + "</td></tr>\n";
   }
   h += "</table>\n";
+  if (const auto extras = extra_term_rows(doc); !extras.empty()) {
+    h += "<p class=\"soft\">Correlated and periodic terms: each first-order Gauss-Markov term (sigma, "
+         "correlation time T_c; GM1, GM2, ... by correlation time) and the sinusoid (amplitude, "
+         "frequency f).</p>\n<table><tr><th>channel</th><th>term</th><th>magnitude</th><th>T_c or f</th></tr>\n";
+    const auto cell = [](const TermText& t, const std::string& prefix) {
+      return t.identified
+                 ? fmt::format("<td class=\"num\">{}{} <span class=\"soft\">{}</span><br><span class=\"ci\">{}</span></td>",
+                               prefix, html_escape(t.value), html_escape(t.unit), t.ci)
+                 : fmt::format("<td class=\"num ni\">{}{} <span class=\"soft\">{}</span><br><span class=\"ci\">not "
+                               "identified</span></td>",
+                               prefix, html_escape(t.value), html_escape(t.unit));
+    };
+    for (const auto& r : extras) {
+      h += "<tr><td>" + html_escape(r.channel) + "</td><td>" + r.term + "</td>" + cell(r.magnitude, "") +
+           cell(r.shape, r.shape_name + " = ") + "</tr>\n";
+    }
+    h += "</table>\n";
+  }
+  if (const auto selection = selection_rows(doc); !selection.empty()) {
+    h += "<h2>Model selection (gmwm)</h2>\n<p class=\"soft\">The model of least WVIC (wavelet variance "
+         "information criterion) among the candidates; J: the moment conditions' goodness of fit (χ² on "
+         "its dof for an exact model). Every candidate is in report.json (fit.gmwm.candidates).</p>\n"
+         "<table><tr><th>channel</th><th>model</th><th>J</th><th>WVIC</th><th>next best</th><th>candidates</th></tr>\n";
+    for (const auto& r : selection) {
+      h += fmt::format("<tr><td>{}</td><td>{}</td><td>{}</td><td class=\"num\">{}</td><td>{}</td><td "
+                       "class=\"num\">{}</td></tr>\n",
+                       html_escape(r.channel), html_escape(r.model), html_escape(r.j), r.wvic,
+                       html_escape(r.runner_up), r.candidates);
+    }
+    h += "</table>\n";
+  }
   // Datasheet comparison: one row per channel, one column per datasheet term.
   bool any_spec = false;
   for (const auto& ch : channels) any_spec = any_spec || !ch["spec_comparison"].is_null();

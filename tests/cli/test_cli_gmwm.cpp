@@ -179,6 +179,18 @@ TEST(CliGmwm, AnalyzeFitsByGmwmAndItsFigureDrawsEveryGaussMarkovTerm) {
     }
   }
   EXPECT_EQ(checked, scales.size());  // the grid spans the curve's taus
+  // The report's tables: each GM term with its interval, the selection row, and the power-law
+  // terms outside the model said to be so (not "not identified").
+  const std::string md = slurp(out + "/report.md");
+  EXPECT_NE(md.find("| GM1 | "), std::string::npos) << md;
+  EXPECT_NE(md.find("| GM2 | "), std::string::npos) << md;
+  EXPECT_NE(md.find("T_c = "), std::string::npos) << md;
+  EXPECT_NE(md.find("### Model selection (gmwm)"), std::string::npos) << md;
+  EXPECT_NE(md.find("| N+GM+GM | "), std::string::npos) << md;
+  EXPECT_NE(md.find("– (not in the model)"), std::string::npos) << md;
+  const std::string html = slurp(out + "/report.html");
+  EXPECT_NE(html.find("<h2>Model selection (gmwm)</h2>"), std::string::npos);
+  EXPECT_NE(html.find("not in the model"), std::string::npos);
 }
 
 TEST(CliGmwm, BadInputEndsWithAClearMessageOrATermNotIdentified) {
