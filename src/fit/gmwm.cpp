@@ -357,7 +357,11 @@ Bounds bounds_for(const Layout& layout, const GmwmCurve& c) {
     b.hi(layout.magnitude[t]) = std::log(ub) + 2.0;
     if (layout.shape[t] >= 0) {
       if (layout.terms[t] == GmwmTerm::GM) {
-        b.lo(layout.shape[t]) = std::log(0.1 * c.tau0_s);
+        // Its peak (1.89 T_c) within the fitted taus: a faster GM is white noise to the curve,
+        // and with the floor at 0.1 tau0 one slid there and traded N away (N+GM fits on other
+        // ADIS16405 units ran to the iteration limit along that valley, or reported N not
+        // identified; with the floor a factor two lower white noise still lost its N).
+        b.lo(layout.shape[t]) = std::log(std::max(0.1 * c.tau0_s, tau_lo / 1.8926));
         b.hi(layout.shape[t]) = std::log(20.0 * tau_hi);
       } else {
         b.lo(layout.shape[t]) = std::log(0.3 / tau_hi);
@@ -365,12 +369,12 @@ Bounds bounds_for(const Layout& layout, const GmwmCurve& c) {
       }
     }
   }
-  (void)tau_lo;
   return b;
 }
 
 LmResult levenberg_marquardt(const Layout& layout, const GmwmCurve& c, const Matrix& whiten,
                              Vector p, const Bounds& bounds, int max_iterations) {
+  constexpr double kGradientCosine = 1e-6;
   const Vector y = Eigen::Map<const Vector>(c.avar.data(), static_cast<Eigen::Index>(c.avar.size()));
   auto clamp = [&](Vector& q) { q = q.cwiseMax(bounds.lo).cwiseMin(bounds.hi); };
   clamp(p);
@@ -390,6 +394,21 @@ LmResult levenberg_marquardt(const Layout& layout, const GmwmCurve& c, const Mat
     for (Eigen::Index j = 0; j < layout.parameters; ++j) {
       if ((p(j) <= bounds.lo(j) + 1e-12 && g(j) < 0.0) || (p(j) >= bounds.hi(j) - 1e-12 && g(j) > 0.0)) {
         frozen[static_cast<std::size_t>(j)] = true;
+      }
+    }
+    // First-order stationarity (MINPACK's gtol): the residual is orthogonal to every free
+    // column of the Jacobian to within kGradientCosine. Without it a flat valley (a GM term
+    // sliding towards white noise or a random walk) made tiny improving steps until the
+    // iteration limit on real ADIS16405 axes, even for N+GM.
+    {
+      double worst = 0.0;
+      for (Eigen::Index j = 0; j < layout.parameters; ++j) {
+        if (frozen[static_cast<std::size_t>(j)] || !(jtj(j, j) > 0.0)) continue;
+        worst = std::max(worst, std::abs(g(j)) / std::sqrt(jtj(j, j) * std::max(cost, 1e-300)));
+      }
+      if (worst < kGradientCosine) {
+        converged = true;
+        break;
       }
     }
     bool improved = false;

@@ -450,6 +450,7 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
 
   const Matrix w0 = initial_whitener(c);
   std::vector<GmwmTerm> chosen = candidates.front();
+  std::vector<std::size_t> ranking;  // auto: candidate indices by WVIC, best first
   if (candidates.size() > 1) {
     // One weight for every candidate: W at the fitted largest candidate (the most flexible
     // description of the curve), so the objectives are comparable.
@@ -459,8 +460,6 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
     }
     const Weighted ref = iterate_weights(Layout(candidates[largest]), c, w0, 1);
     const Matrix wh = ref.fit.ok ? ref.whiten : w0;
-    double best = std::numeric_limits<double>::infinity();
-    std::size_t best_index = 0;
     for (std::size_t i = 0; i < candidates.size(); ++i) {
       const Layout layout(candidates[i]);
       const ModelFit f = fit_model(layout, c, wh);
@@ -495,23 +494,54 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
           cand.penalty += 2.0 * std::log(20.0 * static_cast<double>(k));
         }
         cand.wvic = cand.objective + cand.penalty;
-        // Strictly better only: a larger candidate whose extra terms ran to their floor ties
-        // with the smaller one it reduces to, and the smaller one is kept.
-        if (!std::isfinite(best) || cand.wvic < best - 1e-6 * std::abs(best)) {
-          best = cand.wvic;
-          best_index = i;
-        }
       } else {
         cand.wvic = std::numeric_limits<double>::infinity();
       }
       result.candidates.push_back(cand);
     }
-    result.candidates[best_index].selected = true;
-    chosen = candidates[best_index];
+    // Ranked by WVIC among the converged candidates only: the criterion of a last iterate is
+    // no estimate's (on other ADIS16405 units an unconverged N+K+GM+GM+GM had the least WVIC
+    // and then reported nothing). Strictly better only: a larger candidate whose extra terms
+    // ran to their floor ties with the smaller one it reduces to, and the smaller one is kept.
+    for (std::size_t i = 0; i < result.candidates.size(); ++i) {
+      if (result.candidates[i].converged) ranking.push_back(i);
+    }
+    if (ranking.empty()) {
+      for (std::size_t i = 0; i < result.candidates.size(); ++i) ranking.push_back(i);
+    }
+    std::size_t best = ranking.front();
+    for (const std::size_t i : ranking) {
+      const double w = result.candidates[i].wvic, b = result.candidates[best].wvic;
+      if (!std::isfinite(b) || w < b - 1e-6 * std::abs(b)) best = i;
+    }
+    // The others as fallbacks, by WVIC.
+    std::erase(ranking, best);
+    std::stable_sort(ranking.begin(), ranking.end(), [&](std::size_t a, std::size_t b) {
+      return result.candidates[a].wvic < result.candidates[b].wvic;
+    });
+    ranking.insert(ranking.begin(), best);
+    chosen = candidates[best];
   }
 
+  // The chosen model refitted at its own weight; should that fit not converge, the next
+  // candidates by WVIC are tried (at most kRefitTries in all), and the warning says so.
+  constexpr std::size_t kRefitTries = 3;
+  Weighted fin = iterate_weights(Layout(chosen), c, w0, options.weight_iterations);
+  std::size_t used_rank = 0;
+  for (std::size_t r = 1; r < std::min(ranking.size(), kRefitTries) && !(fin.fit.ok && fin.fit.lm.converged); ++r) {
+    Weighted next = iterate_weights(Layout(candidates[ranking[r]]), c, w0, options.weight_iterations);
+    if (next.fit.ok && next.fit.lm.converged) {
+      result.warnings.push_back(fmt::format(
+          "gmwm: the least-WVIC model {} did not converge when refitted at its own weight; the next by WVIC, "
+          "{}, is reported",
+          model_name(chosen), model_name(candidates[ranking[r]])));
+      chosen = candidates[ranking[r]];
+      fin = std::move(next);
+      used_rank = r;
+    }
+  }
+  if (!ranking.empty()) result.candidates[ranking[used_rank]].selected = true;
   const Layout layout(chosen);
-  const Weighted fin = iterate_weights(layout, c, w0, options.weight_iterations);
   result.model = model_name(chosen);
   if (!fin.fit.ok) {
     result.status = GmwmStatus::no_convergence;
