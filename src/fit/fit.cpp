@@ -547,8 +547,29 @@ std::string FitSummary::FullReport() const {
   return out;
 }
 
+namespace {
+FitResult fit_allan_body(std::span<const DevPoint> oadev_points, std::size_t n_phase, double tau0_s,
+                         const FitOptions& options, std::span<const double> phase_si);
+}  // namespace
+
 FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase, double tau0_s,
                     const FitOptions& options, std::span<const double> phase_si) {
+  FitResult result = fit_allan_body(oadev_points, n_phase, tau0_s, options, phase_si);
+  // Said where the user reads (gmwm says it in its own words): an unconverged wls fit was found
+  // on real ADIS16405 accelerometers (imudata unit 4) with only the diagnostics' message to show it.
+  if (result.summary.termination == Termination::no_convergence && options.method != Method::gmwm) {
+    result.summary.warnings.push_back(fmt::format(
+        "the {} fit did not converge (its iteration limit was reached): the values are its last iterate, not an "
+        "estimate to rely on; fix: --method gmwm (models several Gauss-Markov terms), fewer --terms, or "
+        "--tau-min/--tau-max",
+        method_name(options.method)));
+  }
+  return result;
+}
+
+namespace {
+FitResult fit_allan_body(std::span<const DevPoint> oadev_points, std::size_t n_phase, double tau0_s,
+                         const FitOptions& options, std::span<const double> phase_si) {
   std::string why;
   if (!options.IsValid(&why)) throw InputError("fit options: " + why);
   if (!(tau0_s > 0.0) || !std::isfinite(tau0_s)) throw InputError("fit: tau0 must be positive");
@@ -1155,6 +1176,7 @@ FitResult fit_allan(std::span<const DevPoint> oadev_points, std::size_t n_phase,
   }
   return result;
 }
+}  // namespace
 
 const Coefficient& coefficient(const NoiseCoefficients& c, int term) {
   switch (term) {

@@ -1,4 +1,5 @@
 // The fitter on exact curves, on short records and on bad input.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -69,6 +70,24 @@ TEST(Fit, ExactCurveIsRecoveredByEveryLeastSquaresMethod) {
     EXPECT_NEAR(r.avar_min_eq2, 2 * kN * kK / std::sqrt(3.0), 1e-12);
     expect_no_nan(r);
   }
+}
+
+// A wls fit stopped by its iteration limit says so in a warning (the user reads warnings, not
+// the diagnostics' message); a converged one does not.
+TEST(Fit, NoConvergenceIsAWarningNotOnlyADiagnostic) {
+  const auto pts = exact_curve(0, kN, kB, kK, 0, 0.005, 4320001);
+  fit::FitOptions o;
+  o.max_iterations = 1;
+  const auto stopped = fit::fit_allan(pts, 4320001, 0.005, o);
+  ASSERT_EQ(stopped.summary.termination, fit::Termination::no_convergence) << stopped.summary.message;
+  const auto has_warning = [](const fit::FitResult& r) {
+    return std::any_of(r.summary.warnings.begin(), r.summary.warnings.end(),
+                       [](const std::string& w) { return w.find("did not converge") != std::string::npos; });
+  };
+  EXPECT_TRUE(has_warning(stopped));
+  const auto converged = fit::fit_allan(pts, 4320001, 0.005, fit::FitOptions{});
+  ASSERT_EQ(converged.summary.termination, fit::Termination::converged);
+  EXPECT_FALSE(has_warning(converged));
 }
 
 TEST(Fit, SlopeMethodReadsTheTangents) {
