@@ -25,6 +25,55 @@ constexpr std::size_t kMaxPartials = std::size_t{1} << 23;  // 64 MB of partial 
 // Modified Allan: factors up to this run together over chunks of starts (their segments, at
 // most 16 m long, fit in a chunk); larger ones run alone over segments of at least 4 m.
 constexpr std::size_t kSmallWindowFactor = kMinChunk / 16;
+// Powers of two up to this run by doubling (sum_sq_window_doubling_step): a chunk's octaves
+// from one array of D_m, four operations per start and octave instead of the window
+// recursion's prefix sum in registers. Each chunk also builds the lower octaves up to
+// ~3 kDoublingFactor past its end for the higher ones.
+constexpr std::size_t kDoublingFactor = 1024;
+
+bool is_power_of_two(std::size_t m) { return m != 0 && (m & (m - 1)) == 0; }
+
+// The octave factors 1, 2, 4, ... 2^top of one chunk of starts [begin, end) by doubling, the
+// sums of the requested ones into sums[] (indexed like `octave`). n_of(t) is factor t's
+// number of windows; d is scratch.
+template <class WindowCount>
+void doubling_chunk(const double* x, std::span<const std::size_t> octave,
+                    std::span<const std::size_t> factors, WindowCount n_of, std::size_t begin,
+                    std::size_t end, std::vector<double>& d, double* sums) {
+  const std::size_t top = factors[octave.back()];
+  std::size_t levels = 0;
+  while ((std::size_t{1} << levels) <= top) ++levels;
+  // count[p]: windows of octave p in this chunk (0 when not requested); need[p]: the D_2^p
+  // entries that octave p and every higher one read.
+  std::vector<std::size_t> count(levels, 0), need(levels + 1, 0);
+  std::vector<std::ptrdiff_t> slot(levels, -1);
+  for (std::size_t f = 0; f < octave.size(); ++f) {
+    const std::size_t m = factors[octave[f]];
+    std::size_t p = 0;
+    while ((std::size_t{1} << p) < m) ++p;
+    const std::size_t n = n_of(octave[f]);
+    count[p] = n > begin ? std::min(end, n) - begin : 0;
+    slot[p] = static_cast<std::ptrdiff_t>(f);
+  }
+  for (std::size_t p = levels; p-- > 0;) {
+    const std::size_t m = std::size_t{1} << p;
+    const std::size_t own = count[p] > 0 ? count[p] + m : 0;
+    const std::size_t higher = need[p + 1] > 0 ? need[p + 1] + 2 * m : 0;
+    need[p] = std::max(own, higher);
+  }
+  if (need[0] == 0) {
+    for (std::size_t f = 0; f < octave.size(); ++f) sums[f] = 0.0;
+    return;
+  }
+  d.resize(std::max<std::size_t>(need[1], 1));
+  // The chunk's mean phase increment (a rate offset): removed from D, see the kernel.
+  const double slope = (x[begin + need[0]] - x[begin]) / static_cast<double>(need[0]);
+  for (std::size_t p = 0; p < levels; ++p) {
+    const double sum = p == 0 ? sum_sq_window_doubling_first(x + begin, count[0], need[1], slope, d.data())
+                              : sum_sq_window_doubling_step(d.data(), std::size_t{1} << p, count[p], need[p + 1]);
+    if (slot[p] >= 0) sums[slot[p]] = sum;
+  }
+}
 
 std::size_t chunk_length(std::size_t n_starts, std::size_t n_factors) {
   std::size_t chunk = kMinChunk;
@@ -222,7 +271,7 @@ DifferenceSums modified_difference_sums(std::span<const double> phase,
   // of the phase at multiples of 64 (O(1) per row instead of a direct sum), the other 63 from
   // the recursion down the tile, so one tile serves every far factor from cache.
   const std::size_t columns = matrix_columns(n_phase);
-  std::vector<std::size_t> small, large, far;
+  std::vector<std::size_t> small, octave, large, far;
   std::size_t small_count = 0;
   for (std::size_t t = 0; t < factors.size(); ++t) {
     const std::size_t m = factors[t];
@@ -230,6 +279,10 @@ DifferenceSums modified_difference_sums(std::span<const double> phase,
     result.n[t] = n_phase - 3 * m + 1;
     if (m % columns == 0) {
       far.push_back(t);
+    } else if (m <= kDoublingFactor && is_power_of_two(m) &&
+               std::none_of(octave.begin(), octave.end(), [&](std::size_t o) { return factors[o] == m; })) {
+      octave.push_back(t);
+      small_count = std::max(small_count, result.n[t]);
     } else if (m <= kSmallWindowFactor) {
       small.push_back(t);
       small_count = std::max(small_count, result.n[t]);
@@ -253,7 +306,8 @@ DifferenceSums modified_difference_sums(std::span<const double> phase,
     const std::size_t segment = std::max(kMinChunk, 4 * factors[*it]);
     for (std::size_t j = 0; j < n; j += segment) items.push_back({*it, j, std::min(n, j + segment)});
   }
-  if (!small.empty()) {
+  std::sort(octave.begin(), octave.end(), [&](std::size_t a, std::size_t b) { return factors[a] < factors[b]; });
+  if (!small.empty() || !octave.empty()) {
     for (std::size_t j = 0; j < small_count; j += kMinChunk) {
       items.push_back({kAllSmall, j, std::min(small_count, j + kMinChunk)});
     }
@@ -330,7 +384,7 @@ DifferenceSums modified_difference_sums(std::span<const double> phase,
   // tiles all far ones.
   std::vector<std::size_t> slot(items.size() + 1, 0);
   for (std::size_t i = 0; i < items.size(); ++i) {
-    const std::size_t covers = items[i].factor == kAllSmall  ? small.size()
+    const std::size_t covers = items[i].factor == kAllSmall  ? small.size() + octave.size()
                                : items[i].factor == kFarTile ? far.size()
                                                              : 1;
     slot[i + 1] = slot[i] + covers;
@@ -357,6 +411,11 @@ DifferenceSums modified_difference_sums(std::span<const double> phase,
       }
       partial[slot[i] + f] = sum;
     }
+    if (!octave.empty()) {
+      thread_local std::vector<double> d;
+      doubling_chunk(x, octave, factors, [&](std::size_t t) { return result.n[t]; }, item.begin,
+                     item.end, d, partial.data() + slot[i] + small.size());
+    }
   });
   std::vector<long double> totals(factors.size(), 0.0L);
   for (std::size_t i = 0; i < items.size(); ++i) {
@@ -366,6 +425,7 @@ DifferenceSums modified_difference_sums(std::span<const double> phase,
       totals[items[i].factor] += partial[slot[i]];
     } else {
       for (std::size_t f = 0; f < small.size(); ++f) totals[small[f]] += partial[slot[i] + f];
+      for (std::size_t f = 0; f < octave.size(); ++f) totals[octave[f]] += partial[slot[i] + small.size() + f];
     }
   }
   for (std::size_t t = 0; t < factors.size(); ++t) result.sum_sq[t] = static_cast<double>(totals[t]);

@@ -1,5 +1,6 @@
 #include "kernels.hpp"
 
+#include <algorithm>
 #include <utility>
 #include <vector>
 
@@ -258,6 +259,81 @@ IMUNOISE_CLONES double sum_sq_window_second_difference(const double* x, std::siz
     e_sum += e * e;
   }
   if (second_sum != nullptr) *second_sum = e_sum;
+  return sum;
+}
+
+namespace {
+
+// Entries [begin, end) of one doubling step: the windows' squares into acc (Sum) and/or d
+// replaced by the next octave (Update). Every load of a vector step precedes its store, and the
+// store is at the lowest index the step reads: the in-place update never reads an entry it has
+// already overwritten, for any m >= 1.
+template <bool Sum, bool Update>
+__attribute__((always_inline)) inline double doubling_range(double* d, std::size_t m, std::size_t begin,
+                                                            std::size_t end) {
+  Vec8 acc[2] = {};
+  std::size_t k = begin;
+  for (; k + 2 * kLanes <= end; k += 2 * kLanes) {
+    for (std::size_t u = 0; u < 2; ++u) {
+      const std::size_t i = k + u * kLanes;
+      const Vec8 d0 = load(d + i), d1 = load(d + i + m);
+      if constexpr (Sum) {
+        const Vec8 v = d1 - d0;
+        acc[u] += v * v;
+      }
+      if constexpr (Update) {
+        const Vec8 doubled = (d0 + load(d + i + 2 * m)) + 2.0 * d1;
+        __builtin_memcpy(d + i, &doubled, sizeof doubled);
+      }
+    }
+  }
+  const Vec8 s = acc[0] + acc[1];
+  double sum = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+  for (; k < end; ++k) {
+    if constexpr (Sum) {
+      const double v = d[k + m] - d[k];
+      sum += v * v;
+    }
+    if constexpr (Update) d[k] = (d[k] + d[k + 2 * m]) + 2.0 * d[k + m];
+  }
+  return sum;
+}
+
+}  // namespace
+
+IMUNOISE_CLONES double sum_sq_window_doubling_step(double* d, std::size_t m, std::size_t count,
+                                                   std::size_t next) {
+  const std::size_t both = std::min(count, next);
+  double sum = doubling_range<true, true>(d, m, 0, both);
+  if (count > both) sum += doubling_range<true, false>(d, m, both, count);
+  if (next > both) doubling_range<false, true>(d, m, both, next);
+  return sum;
+}
+
+IMUNOISE_CLONES double sum_sq_window_doubling_first(const double* x, std::size_t count,
+                                                    std::size_t next, double slope, double* d) {
+  // m = 1 from x itself: v_k = x[k+2] - 2 x[k+1] + x[k], D_2(k) = (x[k+3] - x[k+1]) + (x[k+2] - x[k]).
+  const double shift = 4.0 * slope;
+  const std::size_t both = std::min(count, next);
+  Vec8 acc[2] = {};
+  std::size_t k = 0;
+  for (; k + 2 * kLanes <= both; k += 2 * kLanes) {
+    for (std::size_t u = 0; u < 2; ++u) {
+      const std::size_t i = k + u * kLanes;
+      const Vec8 x0 = load(x + i), x1 = load(x + i + 1), x2 = load(x + i + 2);
+      const Vec8 v = (x2 - 2.0 * x1) + x0;
+      acc[u] += v * v;
+      const Vec8 doubled = ((load(x + i + 3) - x1) + (x2 - x0)) - shift;
+      __builtin_memcpy(d + i, &doubled, sizeof doubled);
+    }
+  }
+  const Vec8 s = acc[0] + acc[1];
+  double sum = ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
+  for (std::size_t j = k; j < count; ++j) {
+    const double v = (x[j + 2] - 2.0 * x[j + 1]) + x[j];
+    sum += v * v;
+  }
+  for (std::size_t j = k; j < next; ++j) d[j] = ((x[j + 3] - x[j + 1]) + (x[j + 2] - x[j])) - shift;
   return sum;
 }
 

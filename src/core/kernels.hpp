@@ -54,6 +54,22 @@ void compensated_prefix(const double* rate, std::size_t n, double offset, double
 double sum_sq_window_second_difference(const double* x, std::size_t m, std::size_t count,
                                        double* second_sum = nullptr);
 
+/// One octave of the modified-Allan windows by doubling (difference_sums.cpp). With
+/// D_m(j) = sum_{i=j}^{j+m-1} (x[i+m] - x[i]), the window of factor m is v_j = D_m(j+m) - D_m(j)
+/// and the next octave's sums follow without a pass over x: D_2m(j) = D_m(j) + 2 D_m(j+m) +
+/// D_m(j+2m). Given d[k] = D_m(k), returns sum_{k<count} (d[k+m] - d[k])^2 and overwrites
+/// d[k] with D_2m(k) for k < next (in place: each step reads only entries at or after its own).
+/// Reads d[0 .. max(count + m, next + 2m) - 1].
+double sum_sq_window_doubling_step(double* d, std::size_t m, std::size_t count, std::size_t next);
+
+/// The first doubling step (m = 1) read from x directly: returns the squares of the count
+/// windows of factor 1 and writes D_2(k) - 4 slope into d[k] for k < next. Reads
+/// x[0 .. max(count + 1, next + 2)]. A constant subtracted from every x[k+1] - x[k] moves each
+/// D_m by m^2 times it and leaves every window D_m(j+m) - D_m(j) as it is; with slope the phase's
+/// mean increment, D stays near the size of the windows instead of m^2 times the rate offset.
+double sum_sq_window_doubling_first(const double* x, std::size_t count, std::size_t next, double slope,
+                                    double* d);
+
 /// Modified-Allan windows down a gathered tile (difference_sums.cpp): rows of 64 phase samples,
 /// row r + A starting m samples after row r (lag = 64 A elements). For each of `rows` rows, the
 /// windows v(r, c), c = 0..63, with v(r, 0) = v0[r] and v(r, c+1) = v(r, c) + e_{c+m} - e_c

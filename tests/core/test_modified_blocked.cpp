@@ -88,11 +88,14 @@ TEST(ModifiedBlocked, TilePathOnShortRecordsMatchesTheDefinition) {
 
 // Phase far from zero and tilted (a rate offset left in): the recursion's increments cancel the
 // offset and slope term by term; the result still matches to 1e-10.
+// The power-of-two factors below the tile columns (256 at 6e5 samples) run by doubling.
 TEST(ModifiedBlocked, OffsetAndSlopeDoNotDegradeResults) {
-  const auto x = test::offset_random_walk(200000, 23, 1e6, 50.0);
-  const std::vector<std::size_t> factors{1, 2, 16, 300, 4096, 5000, 30000};
-  for (const auto& p : compute_deviation(Estimator::mdev, x, 1.0, factors)) {
-    EXPECT_NEAR(p.dev / prefix_mdev(x, 1.0, p.m), 1.0, 1e-10) << "m=" << p.m;
+  for (const std::size_t n : {200000u, 600000u}) {
+    const auto x = test::offset_random_walk(n, 23, 1e6, 50.0);
+    const std::vector<std::size_t> factors{1, 2, 16, 64, 128, 200, 256, 300, 4096, 5000, 30000};
+    for (const auto& p : compute_deviation(Estimator::mdev, x, 1.0, factors)) {
+      EXPECT_NEAR(p.dev / prefix_mdev(x, 1.0, p.m), 1.0, 1e-10) << "n=" << n << " m=" << p.m;
+    }
   }
 }
 
