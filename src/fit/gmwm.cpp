@@ -335,14 +335,33 @@ Vector nnls_lh(const Matrix& a, const Vector& b) {
   return x.cwiseProduct(scale);
 }
 
+namespace {
+
+// A scale's estimate can fall far below its expectation where it has few degrees of freedom
+// (chi-square with 1 dof is below 1e-3 of its mean in 2.5 % of records): the largest
+// expectation its estimate allows at this one-sided level, not the estimate itself, bounds a
+// term's variance. Read from the raw estimate, one low longest scale capped K at a tenth of the
+// truth on a 3 h Monte-Carlo record (K at its bound, J 8561 on 14 dof).
+constexpr double kBoundLevel = 1e-6;
+
+double expectation_bound(const GmwmCurve& c, std::size_t i) {
+  const double m = static_cast<double>(c.m[i]);
+  const double edf = std::max(1.0, (static_cast<double>(c.n_phase) - 2.0 * m) / m);  // as initial_whitener's
+  const boost::math::chi_squared_distribution<double> chi(edf);
+  return c.avar[i] * edf / boost::math::quantile(chi, kBoundLevel);
+}
+
+}  // namespace
+
 Bounds bounds_for(const Layout& layout, const GmwmCurve& c) {
   Bounds b;
   b.lo = Vector(layout.parameters);
   b.hi = Vector(layout.parameters);
   const double tau_lo = c.tau_s.front(), tau_hi = c.tau_s.back();
   for (std::size_t t = 0; t < layout.terms.size(); ++t) {
-    // Upper bound of the variance: the lowest line of the term's shape touching the curve
-    // (every other term is >= 0), at the shape's most favourable value for GM/SIN.
+    // Upper bound of the variance: the lowest line of the term's shape touching the curve's
+    // largest allowed expectations (every other term is >= 0), at the shape's most favourable
+    // value for GM/SIN.
     // A bump (GM, SIN) is below the curve at its peak scale, wherever that is: its variance is
     // at most the curve's largest value over the peak's height (0.617^2 for GM, ~0.52 for SIN;
     // halved for a peak between two dyadic scales). A power law is below the curve everywhere.
@@ -351,7 +370,9 @@ Bounds bounds_for(const Layout& layout, const GmwmCurve& c) {
     if (layout.terms[t] == GmwmTerm::GM) ub = top / (0.5 * 0.381142);
     else if (layout.terms[t] == GmwmTerm::SIN) ub = top / (0.5 * 0.52);
     else {
-      for (std::size_t i = 0; i < c.tau_s.size(); ++i) ub = std::min(ub, c.avar[i] / unit_avar(layout.terms[t], 0.0, c, i));
+      for (std::size_t i = 0; i < c.tau_s.size(); ++i) {
+        ub = std::min(ub, expectation_bound(c, i) / unit_avar(layout.terms[t], 0.0, c, i));
+      }
     }
     b.lo(layout.magnitude[t]) = std::log(ub) - kFloorSpan;
     b.hi(layout.magnitude[t]) = std::log(ub) + 2.0;
