@@ -10,6 +10,7 @@
 #include "imunoise/error.hpp"
 #include "../core/kernels.hpp"   // the deviation engine's vector kernels
 #include "../core/parallel.hpp"  // the library's fork-join helper
+#include "../core/prefaulted.hpp"
 #include "power_law_model.hpp"
 
 namespace imunoise {
@@ -96,7 +97,7 @@ Lag1Stage lag1_stage(std::span<const double> phase, std::size_t m, int d_max) {
   // record per tau (at m >= 8 one cache line per point: the gather is most of the cost), then
   // contiguous passes over at most 1 MB.
   thread_local std::vector<double> z;
-  z.resize(points);
+  detail::resize_prefaulted(z, points);
   const double* x = phase.data();
   for (std::size_t i = 0; i < points; ++i) z[i] = x[i * m];
   std::size_t n = points;

@@ -4,6 +4,7 @@
 
 #include "kernels.hpp"
 #include "parallel.hpp"
+#include "prefaulted.hpp"
 
 namespace imunoise::detail {
 namespace {
@@ -100,7 +101,7 @@ void gather_tile(std::span<const double> x, std::size_t columns, std::size_t c0,
                  std::size_t rows, std::vector<double>& tile) {
   // Only the ragged end is zeroed: clearing the whole megabyte per tile would cost more
   // memory traffic than the gather itself.
-  tile.resize(rows * kTileWidth);
+  resize_prefaulted(tile, rows * kTileWidth);
   for (std::size_t r = 0; r < rows; ++r) {
     const std::size_t begin = r * columns + c0;
     double* row = tile.data() + r * kTileWidth;

@@ -296,7 +296,9 @@ std::size_t BinaryReader::read(std::span<double> out) {
   std::size_t wanted = out.size();
   if (record_count_) wanted = std::min(wanted, *record_count_ - next_record_);
   if (map_ && map_->bytes().size() == *record_count_ * stride) {
-    // Straight from the mapping; the pages behind are dropped so that memory stays bounded.
+    // Straight from the mapping, its pages mapped ahead in bulk; the pages behind are dropped
+    // so that memory stays bounded.
+    map_->populate_ahead(next_record_ * stride);
     decode(map_->bytes().data() + next_record_ * stride, wanted, out.data());
     next_record_ += wanted;
     map_->release_before(next_record_ * stride);

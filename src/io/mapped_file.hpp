@@ -19,11 +19,15 @@ class MappedFile {
   /// Drops the whole pages before byte `end` from this process (they stay in the page cache),
   /// so that resident memory does not grow with a file read front to back.
   void release_before(std::size_t end);
+  /// Sets up the page-table entries of the next few megabytes from byte `from` in one system
+  /// call, unless that is already done (release_before calls it: a reader front to back).
+  void populate_ahead(std::size_t from);
 
  private:
   const unsigned char* data_ = nullptr;
   std::size_t size_ = 0;
   std::size_t released_ = 0;
+  std::size_t populated_ = 0;
 };
 
 }  // namespace imunoise::io

@@ -5,12 +5,14 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <exception>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <new>
 #include <span>
 #include <thread>
 
@@ -85,9 +87,37 @@ std::jthread reserve_phase(std::vector<double>& phase, std::size_t count) {
   if (end <= begin) return {};
   ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
   if (end - begin < 8 * huge || std::thread::hardware_concurrency() < 2) return {};
-  return std::jthread([begin, end] {
-    ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_POPULATE_WRITE);
+  // The small pages before the first and after the last huge page too (up to 4 MB, ~600 page
+  // faults of the writer on 1e7 samples otherwise: tens of microseconds each on a VM).
+  constexpr std::uintptr_t small = 4096;
+  const auto first = (reinterpret_cast<std::uintptr_t>(phase.data()) + small - 1) & ~(small - 1);
+  const auto last = (reinterpret_cast<std::uintptr_t>(phase.data() + count)) & ~(small - 1);
+  return std::jthread([first, last] {
+    ::madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
   });
+}
+
+struct FreeDeleter {
+  void operator()(double* p) const { std::free(p); }
+};
+
+// An uninitialised buffer of `count` samples; from 2 MB on in transparent huge pages. The
+// first block (the rate offset's 1e6 samples, 8 MB) in 4 KB pages took 2,048 page faults on
+// its first write, and on a virtual machine a fault is an exit to the hypervisor (26 us each on
+// the 2-vCPU VM of 2026-12-05: ~50 ms of `dev` on 1e7 samples, docs/performance.md).
+std::unique_ptr<double[], FreeDeleter> read_buffer(std::size_t count) {
+  constexpr std::size_t huge = std::size_t{2} << 20;
+  const std::size_t bytes = count * sizeof(double);
+  void* p = nullptr;
+  if (bytes >= huge) {
+    const std::size_t rounded = (bytes + huge - 1) / huge * huge;
+    p = std::aligned_alloc(huge, rounded);
+    if (p != nullptr) ::madvise(p, rounded, MADV_HUGEPAGE);
+  } else {
+    p = std::malloc(bytes);
+  }
+  if (p == nullptr) throw std::bad_alloc();
+  return std::unique_ptr<double[], FreeDeleter>(static_cast<double*>(p));
 }
 
 bool is_binary(const LoadOptions& options) {
@@ -235,7 +265,7 @@ void load_binary(const LoadOptions& options, Record& record, double to_si) {
   // uninitialised: the reader writes every element it returns before anything reads it.
   const std::size_t capacity =
       std::max<std::size_t>(1, std::min(kRateOffsetSamples, reader->record_count().value_or(kRateOffsetSamples)));
-  const auto storage = std::make_unique_for_overwrite<double[]>(capacity);
+  const auto storage = read_buffer(capacity);
   const std::span<double> buffer(storage.get(), capacity);
   const std::span<double> first = buffer.first(reader->read(buffer));
   // After it, blocks small enough to stay in L2 between decoding, integrating and checking:
