@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <optional>
 #include <string>
 
 #include "imunoise/error.hpp"
 #include "../core/parallel.hpp"  // the library's fork-join helper
+#include "../core/prefaulted.hpp"
 
 namespace imunoise {
 namespace {
@@ -36,8 +38,11 @@ std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Esti
                      "-3 flicker-walk FM, -4 random-run FM)");
   }
 
-  std::vector<PointConfidence> info(points.size());
-  std::vector<std::size_t> order(points.size());
+  // With every tau of a long record these are tens of MB each: mapped in bulk.
+  std::vector<PointConfidence> info;
+  detail::resize_prefaulted(info, points.size());
+  std::vector<std::size_t> order;
+  detail::resize_prefaulted(order, points.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return points[a].m < points[b].m; });
@@ -51,12 +56,28 @@ std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Esti
   // Identification at each tau reads only the phase, so the taus are identified side by side
   // (each result lands in its own slot: the outcome cannot depend on the thread count); the
   // fallback to the previous tau's noise type below is then applied in increasing m.
-  std::vector<NoiseId> identified(points.size());
+  std::vector<NoiseId> identified;
+  detail::resize_prefaulted(identified, points.size());
+  // Too few decimated points is decided by m alone, so it is a run of the largest taus (with
+  // --taus all most of them): those are not sent to the identification, and one note on the
+  // run's first point speaks for all of it (a sentence per tau was 0.3 KB each).
+  std::vector<char> too_few;
+  detail::resize_prefaulted(too_few, points.size());
   if (finite_difference_proxy(estimator) && !options.forced_alpha) {
     detail::parallel_for(points.size(), options.threads, [&](std::size_t i) {
-      if (points[i].m > 0) identified[i] = try_identify_noise(phase, points[i].m, estimator);
+      if (points[i].m == 0) return;
+      if (noise_identifiable(phase.size(), points[i].m)) {
+        identified[i] = try_identify_noise(phase, points[i].m, estimator);
+      } else {
+        too_few[i] = 1;
+      }
     });
   }
+  constexpr std::size_t kNone = static_cast<std::size_t>(-1);
+  std::size_t run_first = kNone;
+  std::size_t run_last = kNone;
+  std::size_t run_count = 0;
+  std::optional<int> run_alpha;
   std::optional<int> previous;
   for (const std::size_t index : order) {
     DevPoint& point = points[index];
@@ -72,6 +93,17 @@ std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Esti
     if (options.forced_alpha) {
       out.noise.alpha = *options.forced_alpha;
       out.noise.method = NoiseIdMethod::forced;
+    } else if (too_few[index]) {
+      if (run_first == kNone) {
+        run_first = index;
+        run_alpha = previous;
+      }
+      run_last = index;
+      ++run_count;
+      if (previous) {
+        out.noise.alpha = *previous;
+        out.noise.method = NoiseIdMethod::previous_tau;
+      }
     } else if (point.m > 0) {
       out.noise = std::move(identified[index]);
       if (!out.noise.identified() && previous) {
@@ -87,6 +119,7 @@ std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Esti
   // The EDF and the chi-squared quantiles of each point depend on its own noise type only:
   // side by side (with every tau of a long record they are most of the intervals' time).
   if (!finite_difference_proxy(estimator)) return info;
+  const std::string rough_note = "noise type unknown, rough IEEE 952 EDF N/m - 1 used";
   detail::parallel_for(points.size(), options.threads, [&](std::size_t index) {
     DevPoint& point = points[index];
     PointConfidence& out = info[index];
@@ -103,8 +136,9 @@ std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Esti
     } else {
       const double rough = ieee952_edf(point.m, n_phase);
       if (!std::isnan(rough)) out.edf = {rough, EdfMethod::ieee952_simple};
-      const std::string why = "noise type unknown, rough IEEE 952 EDF N/m - 1 used";
-      out.note = out.noise.message.empty() ? why : out.noise.message + "; " + why;
+      if (!too_few[index]) {
+        out.note = out.noise.message.empty() ? rough_note : out.noise.message + "; " + rough_note;
+      }
     }
 
     point.edf = out.edf.value;
@@ -112,6 +146,19 @@ std::vector<PointConfidence> fill_confidence(std::vector<DevPoint>& points, Esti
     point.ci_low = ci.low;
     point.ci_high = ci.high;
   });
+  if (run_first != kNone) {
+    std::string note = too_few_for_noise_id(estimator, phase.size(), points[run_first].m);
+    note += run_alpha ? "; using alpha = " + std::to_string(*run_alpha) + " identified at a smaller tau"
+                      : "; " + rough_note;
+    if (run_count == 2) {
+      note += "; the same for the larger tau at m = " + std::to_string(points[run_last].m);
+    } else if (run_count > 2) {
+      note += "; the same for the " + std::to_string(run_count - 1) + " larger taus up to m = " +
+              std::to_string(points[run_last].m);
+    }
+    PointConfidence& first = info[run_first];
+    first.note = first.note.empty() ? note : note + "; " + first.note;
+  }
   return info;
 }
 

@@ -150,7 +150,14 @@ int classify(const Lag1Stage& stage, std::size_t m, int low) {
   return std::clamp(alpha, low, 2);
 }
 
-std::string too_few_message(Estimator estimator, std::size_t n_phase, std::size_t m) {
+
+}  // namespace
+
+bool noise_identifiable(std::size_t n_phase, std::size_t m) {
+  return m > 0 && decimated_count(n_phase, m) >= kMinB1Averages + 1;
+}
+
+std::string too_few_for_noise_id(Estimator estimator, std::size_t n_phase, std::size_t m) {
   const std::size_t points = decimated_count(n_phase, m);
   return "too few samples for noise identification (" + std::string(estimator_name(estimator)) +
          " at m = " + std::to_string(m) + "): " + std::to_string(n_phase) + " phase points give " +
@@ -159,8 +166,6 @@ std::string too_few_message(Estimator estimator, std::size_t n_phase, std::size_
          std::to_string(kMinB1Averages + 1) +
          "; use a smaller averaging factor or force the noise type (--noise-type)";
 }
-
-}  // namespace
 
 std::string_view noise_id_method_name(NoiseIdMethod method) {
   switch (method) {
@@ -249,11 +254,12 @@ double rn_ratio(std::span<const double> phase, std::size_t m) {
   // thread-independent): a ratio that only chooses between two noise types an octave apart
   // does not need long double, but this reads all of a record of 1e8 samples.
   // Modified part: the mean of e over windows of m consecutive terms (n - 3m + 1 windows), a
-  // running sum restarted from a direct sum at every block of max(2^16, m) windows so that
-  // rounding cannot build up beyond the statistic's own (percent-level) scatter.
+  // running sum restarted from a direct sum at every block of max(2^16, 4m) windows so that
+  // rounding cannot build up beyond the statistic's own (percent-level) scatter (a restart
+  // costs m terms: at every m windows they were a sixth of the time at long taus).
   const std::size_t count = n - 2 * m;
   const std::size_t windows = count - m + 1;
-  const std::size_t block = std::max<std::size_t>(std::size_t{1} << 16, m);
+  const std::size_t block = std::max<std::size_t>(std::size_t{1} << 16, 4 * m);
   const std::size_t n_blocks = (count + block - 1) / block;
   std::vector<double> allan_parts(n_blocks, 0.0);
   std::vector<double> modified_parts(n_blocks, 0.0);
@@ -406,7 +412,7 @@ NoiseId try_identify_noise(std::span<const double> phase, std::size_t m, Estimat
     return result;
   }
 
-  result.message = too_few_message(estimator, phase.size(), m);
+  result.message = too_few_for_noise_id(estimator, phase.size(), m);
   return result;
 }
 

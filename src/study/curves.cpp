@@ -11,6 +11,7 @@
 #include "imunoise/preprocess/pooled_deviation.hpp"
 #include "imunoise/study/work_budget.hpp"
 #include "imunoise/total.hpp"
+#include "../core/prefaulted.hpp"
 
 namespace imunoise::study {
 namespace {
@@ -157,9 +158,11 @@ std::vector<Curve> compute_curves(const Record& record, const CurveOptions& opti
       corrected = points;
       apply_bias_correction(corrected, estimator, record.phase_si.size());
     }
+    const bool two_curves = options.bias_correct && has_correction;
     curves.push_back({estimator, name, std::move(points), unit_label(record, integrated),
-                      confidence, split.skipped, skip_note, theobr_factor});
-    if (options.bias_correct && has_correction) {
+                      two_curves ? confidence : std::move(confidence), split.skipped, skip_note,
+                      theobr_factor});
+    if (two_curves) {
       curves.push_back({estimator, name + "-bc", std::move(corrected),
                         unit_label(record, integrated), std::move(confidence), split.skipped,
                         skip_note, std::nullopt});
@@ -241,6 +244,11 @@ std::string curves_table(const Record& record, const std::vector<Curve>& curves,
                        t.gaps.size(), t.missing_samples);
   }
   for (const auto& line : table_notes(record)) out += "# " + line + "\n";
+  // 98 characters a point: with every tau of a long record tens of MB, reserved and mapped once
+  // instead of grown by doubling (each growth a copy into fresh pages).
+  std::size_t n_points = 0;
+  for (const auto& curve : curves) n_points += curve.points.size();
+  detail::reserve_prefaulted(out, out.size() + 98 * n_points + 4096);
   for (const auto& curve : curves) {
     const std::string bounds = curve.confidence.empty() &&
                                        !(curve.points.size() && std::isfinite(curve.points[0].ci_low))

@@ -107,8 +107,8 @@ TEST(FillConfidence, ForcedNoiseTypeAndLevel) {
 
 TEST(FillConfidence, LargestTausReuseTheLastIdentifiedNoiseType) {
   // 41 phase points: m = 1, 2, 4 are identified by B1 (40, 20, 10 rate averages); at m = 8 and
-  // 16 fewer than 8 averages remain and the alpha of m = 4 is carried, as Stable32 does, and the
-  // note says so.
+  // 16 fewer than 8 averages remain and the alpha of m = 4 is carried, as Stable32 does; the
+  // note on the first of them says so for both.
   test::Gaussian gaussian(21);
   const std::vector<double> x = test::power_law_phase(0, 41, gaussian);
   const std::vector<std::size_t> factors{16, 1, 8, 2, 4};  // any order
@@ -122,8 +122,13 @@ TEST(FillConfidence, LargestTausReuseTheLastIdentifiedNoiseType) {
   EXPECT_EQ(info[i16].noise.method, NoiseIdMethod::previous_tau);
   EXPECT_EQ(info[i8].noise.method, NoiseIdMethod::previous_tau);
   EXPECT_EQ(points[i16].alpha, points[i8].alpha);
-  EXPECT_NE(info[i16].note.find("too few samples"), std::string::npos) << info[i16].note;
-  EXPECT_NE(info[i16].note.find("identified at a smaller tau"), std::string::npos);
+  EXPECT_NE(info[i8].note.find("too few samples for noise identification (oadev at m = 8)"),
+            std::string::npos)
+      << info[i8].note;
+  EXPECT_NE(info[i8].note.find("identified at a smaller tau"), std::string::npos);
+  EXPECT_NE(info[i8].note.find("the same for the larger tau at m = 16"), std::string::npos)
+      << info[i8].note;
+  EXPECT_TRUE(info[i16].note.empty()) << info[i16].note;
   EXPECT_TRUE(std::isfinite(points[i16].ci_low) && std::isfinite(points[i16].ci_high));
   EXPECT_LT(points[i16].ci_low, points[i16].dev);
   EXPECT_GT(points[i16].ci_high, points[i16].dev);

@@ -171,5 +171,20 @@ TEST(NoiseId, TooFewSamplesSaySoClearly) {
   EXPECT_EQ(noise_id_method_name(NoiseIdMethod::previous_tau), "previous-tau");
 }
 
+TEST(NoiseId, IdentifiableIsExactlyWhenTryIdentifyDoesNotReportTooFew) {
+  // fill_confidence skips the identification where noise_identifiable says no: both must agree
+  // at every m, and the sentence must be the one try_identify_noise gives.
+  test::Gaussian gaussian(5);
+  for (const std::size_t n : {1u, 2u, 9u, 10u, 37u, 64u, 65u}) {
+    const std::vector<double> phase = test::power_law_phase(0, n, gaussian);
+    for (std::size_t m = 1; m <= n + 1; ++m) {
+      const NoiseId id = try_identify_noise(phase, m, Estimator::oadev);
+      const bool too_few = id.message.find("too few samples") != std::string::npos;
+      EXPECT_EQ(noise_identifiable(n, m), !too_few) << "n = " << n << ", m = " << m;
+      if (too_few) EXPECT_EQ(id.message, too_few_for_noise_id(Estimator::oadev, n, m));
+    }
+  }
+}
+
 }  // namespace
 }  // namespace imunoise

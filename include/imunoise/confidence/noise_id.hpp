@@ -78,6 +78,14 @@ NoiseId identify_noise(std::span<const double> phase, std::size_t m, Estimator e
 /// (method none, message set) instead of thrown. Still throws InputError for m = 0.
 NoiseId try_identify_noise(std::span<const double> phase, std::size_t m, Estimator estimator);
 
+/// True when averaging factor m leaves enough decimated points of n_phase for some method
+/// (the B1 ratio needs kMinB1Averages + 1); try_identify_noise reports too few otherwise.
+bool noise_identifiable(std::size_t n_phase, std::size_t m);
+
+/// The sentence try_identify_noise reports when !noise_identifiable(n_phase, m): how many
+/// points each method needs and how to force the noise type instead.
+std::string too_few_for_noise_id(Estimator estimator, std::size_t n_phase, std::size_t m);
+
 // ---- Building blocks (also used by the tests) --------------------------------------------
 
 /// Lag-1 autocorrelation of `values` about their mean; NaN for fewer than 3 values or zero
