@@ -13,6 +13,8 @@
 #include "imunoise/time_error.hpp"
 #include "imunoise/total.hpp"
 
+#include "prefaulted.hpp"
+
 namespace imunoise {
 namespace {
 
@@ -20,7 +22,8 @@ namespace {
 std::vector<DevPoint> scale(const detail::DifferenceSums& sums, double tau0_s,
                             std::span<const std::size_t> factors, double divisor,
                             bool modified) {
-  std::vector<DevPoint> points(factors.size());
+  std::vector<DevPoint> points;  // every tau of a long record: tens of MB, mapped in bulk
+  detail::resize_prefaulted(points, factors.size());
   for (std::size_t t = 0; t < factors.size(); ++t) {
     const double m = static_cast<double>(factors[t]);
     const double tau_s = m * tau0_s;

@@ -108,39 +108,55 @@ __attribute__((always_inline, target("avx512f,fma"))) inline void load_window(co
 }
 
 // The term of factor m + J at the eight starts of the step, from the windows of each stream.
+// Second differences: the far sample c by an unaligned load (load ports are idle here, the
+// shuffle unit is not), and the first three factors as (c - b) - (b - a), which runs on the
+// adders while the other five keep the multiply-add units busy: 21 % faster on Zen 5 than
+// shuffling both windows with one form (bench_deviation oadev_all; docs/performance.md).
 template <int Order, int J>
 __attribute__((always_inline, target("avx512f,fma"))) inline Vec8 run_term(const Vec8& a, const Vec8 (&w1)[2],
-                                                                           const Vec8 (&w2)[3], const Vec8 (&w3)[4]) {
+                                                                           const double* x2, const Vec8 (&w2)[3],
+                                                                           const double* x3) {
   if constexpr (Order == 2) {
-    return shifted<2 * J>(w2) - 2.0 * shifted<J>(w1) + a;
+    const Vec8 b = shifted<J>(w1);
+    const Vec8 c = load(x2 + 2 * J);
+    if constexpr (J < 3) {
+      return (c - b) - (b - a);
+    } else {
+      return c - 2.0 * b + a;
+    }
   } else {
-    return shifted<3 * J>(w3) - 3.0 * shifted<2 * J>(w2) + 3.0 * shifted<J>(w1) - a;
+    // Third differences as (d - a) - 3 (c - b): two adds and one multiply-add, balanced
+    // between the units, where the textbook form needs three multiply-adds; d loaded directly.
+    const Vec8 d = load(x3 + 3 * J);
+    return (d - a) - 3.0 * (shifted<2 * J>(w2) - shifted<J>(w1));
   }
 }
 
 template <int Order, int J>
 __attribute__((always_inline, target("avx512f,fma"))) inline void add_term(Vec8& acc, const Vec8& a, const Vec8 (&w1)[2],
-                                                                           const Vec8 (&w2)[3], const Vec8 (&w3)[4]) {
-  const Vec8 d = run_term<Order, J>(a, w1, w2, w3);
+                                                                           const double* x2, const Vec8 (&w2)[3],
+                                                                           const double* x3) {
+  const Vec8 d = run_term<Order, J>(a, w1, x2, w2, x3);
   acc += d * d;
 }
 
 template <int Order, std::size_t... J>
 __attribute__((always_inline, target("avx512f,fma"))) inline void run_sums(const double* x, std::size_t m,
-                                                                           std::size_t count, double* sums,
+                                                                           std::size_t count, std::size_t readable,
+                                                                           double* sums,
                                                                            std::index_sequence<J...>) {
   Vec8 acc[8] = {};
-  Vec8 w1[2], w2[3], w3[4];
+  Vec8 w1[2], w2[3];
   // The last stream's whole vectors reach 2 (Order 2) or 3 (Order 3) samples past the last one
   // the eighth factor's term needs, which may be the record's last: those starts go scalar.
   constexpr std::size_t kSlack = Order == 2 ? 2 : 3;
   std::size_t k = 0;
-  for (; k + kLanes + kSlack <= count; k += kLanes) {
+  const std::size_t vector_end = std::min(count, readable >= kSlack ? readable - kSlack : 0);
+  for (; k + kLanes <= vector_end; k += kLanes) {
     const Vec8 a = load(x + k);
     load_window(x + k + m, w1);
-    load_window(x + k + 2 * m, w2);
-    if constexpr (Order == 3) load_window(x + k + 3 * m, w3);
-    (add_term<Order, static_cast<int>(J)>(acc[J], a, w1, w2, w3), ...);
+    if constexpr (Order == 3) load_window(x + k + 2 * m, w2);
+    (add_term<Order, static_cast<int>(J)>(acc[J], a, w1, x + k + 2 * m, w2, x + k + 3 * m), ...);
   }
   for (std::size_t j = 0; j < 8; ++j) {
     const Vec8& s = acc[j];
@@ -153,13 +169,15 @@ __attribute__((always_inline, target("avx512f,fma"))) inline void run_sums(const
 }  // namespace
 
 __attribute__((target("avx512f,fma"))) void sum_sq_second_difference_run8(const double* x, std::size_t m,
-                                                                          std::size_t count, double* sums) {
-  run_sums<2>(x, m, count, sums, std::make_index_sequence<8>{});
+                                                                          std::size_t count, std::size_t readable,
+                                                                          double* sums) {
+  run_sums<2>(x, m, count, readable, sums, std::make_index_sequence<8>{});
 }
 
 __attribute__((target("avx512f,fma"))) void sum_sq_third_difference_run8(const double* x, std::size_t m,
-                                                                         std::size_t count, double* sums) {
-  run_sums<3>(x, m, count, sums, std::make_index_sequence<8>{});
+                                                                         std::size_t count, std::size_t readable,
+                                                                         double* sums) {
+  run_sums<3>(x, m, count, readable, sums, std::make_index_sequence<8>{});
 }
 
 bool difference_runs_available() {
@@ -168,8 +186,8 @@ bool difference_runs_available() {
 }
 #else
 bool difference_runs_available() { return false; }
-void sum_sq_second_difference_run8(const double*, std::size_t, std::size_t, double*) {}
-void sum_sq_third_difference_run8(const double*, std::size_t, std::size_t, double*) {}
+void sum_sq_second_difference_run8(const double*, std::size_t, std::size_t, std::size_t, double*) {}
+void sum_sq_third_difference_run8(const double*, std::size_t, std::size_t, std::size_t, double*) {}
 #endif
 
 namespace {

@@ -32,9 +32,13 @@ double sum_sq_third_difference(const double* x, std::size_t m, std::size_t count
 /// starts, into sums[0..7]: each sample is loaded once for all eight and the shifted vectors are
 /// formed in registers (AVX-512 only: difference_runs_available(); one accumulator of eight lanes
 /// per factor, so the rounding differs from the one-factor kernels' in the last bits).
+/// `readable`: the starts k < readable whose largest-factor window lies inside the record (at
+/// least count); whole vectors run while they stay inside it, the rest by the one-factor loop.
 bool difference_runs_available();
-void sum_sq_second_difference_run8(const double* x, std::size_t m, std::size_t count, double* sums);
-void sum_sq_third_difference_run8(const double* x, std::size_t m, std::size_t count, double* sums);
+void sum_sq_second_difference_run8(const double* x, std::size_t m, std::size_t count, std::size_t readable,
+                                   double* sums);
+void sum_sq_third_difference_run8(const double* x, std::size_t m, std::size_t count, std::size_t readable,
+                                  double* sums);
 
 /// The phase of n rate samples: out[k] = tau0_s ((sum + compensation) after adding y[0..k] -
 /// offset), the running total carried in (sum, compensation) from call to call. Eight samples
