@@ -16,20 +16,38 @@
 
 namespace imunoise::detail {
 
-/// Maps the whole pages inside [p, p + bytes) before they are written: huge pages where the
-/// system allows them (transparent huge pages in madvise mode: one fault and one clear per 2 MB
-/// instead of 512), then one MADV_POPULATE_WRITE.
-inline void populate_for_write(void* p, std::size_t bytes) {
-  constexpr std::uintptr_t kPage = 4096;
-  constexpr std::uintptr_t kHuge = std::uintptr_t{1} << 21;
+/// The whole 4 KB pages inside [p, p + bytes): {first, last}, empty when last <= first.
+struct PageRange {
+  std::uintptr_t first = 0, last = 0;
+};
+inline PageRange whole_pages(const void* p, std::size_t bytes, std::uintptr_t page = 4096) {
   const auto begin = reinterpret_cast<std::uintptr_t>(p);
-  const auto first = (begin + kPage - 1) & ~(kPage - 1);
-  const auto last = (begin + bytes) & ~(kPage - 1);
-  if (last <= first) return;
-  const auto huge_first = (first + kHuge - 1) & ~(kHuge - 1);
-  const auto huge_last = last & ~(kHuge - 1);
-  if (huge_last > huge_first) ::madvise(reinterpret_cast<void*>(huge_first), huge_last - huge_first, MADV_HUGEPAGE);
-  ::madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
+  return {(begin + page - 1) & ~(page - 1), (begin + bytes) & ~(page - 1)};
+}
+
+/// Asks for transparent huge pages on the whole 2 MB pages inside [p, p + bytes) (in madvise
+/// mode: one fault and one clear per 2 MB instead of 512). Returns the bytes advised.
+inline std::size_t advise_huge_pages(const void* p, std::size_t bytes) {
+  const PageRange huge = whole_pages(p, bytes, std::uintptr_t{1} << 21);
+  if (huge.last <= huge.first) return 0;
+  ::madvise(reinterpret_cast<void*>(huge.first), huge.last - huge.first, MADV_HUGEPAGE);
+  return huge.last - huge.first;
+}
+
+/// Maps the whole pages inside [p, p + bytes) in one MADV_POPULATE_WRITE (no stores: safe
+/// beside a thread that writes them).
+inline void populate_pages(const void* p, std::size_t bytes) {
+  const PageRange pages = whole_pages(p, bytes);
+  if (pages.last > pages.first) {
+    ::madvise(reinterpret_cast<void*>(pages.first), pages.last - pages.first, MADV_POPULATE_WRITE);
+  }
+}
+
+/// Maps the whole pages inside [p, p + bytes) before they are written: huge pages where the
+/// system allows them, then one MADV_POPULATE_WRITE.
+inline void populate_for_write(void* p, std::size_t bytes) {
+  advise_huge_pages(p, bytes);
+  populate_pages(p, bytes);
 }
 
 /// v.resize(n), the pages of any new allocation mapped before they are written.

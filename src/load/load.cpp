@@ -1,7 +1,5 @@
 #include "imunoise/load/load.hpp"
 
-#include <sys/mman.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -26,6 +24,7 @@
 #include "imunoise/io/text_reader.hpp"
 #include "imunoise/load/integrate.hpp"
 #include "imunoise/phase.hpp"
+#include "../core/prefaulted.hpp"
 
 namespace imunoise::load {
 namespace {
@@ -68,12 +67,6 @@ double value_scale(const LoadOptions& options) {
 // Rate samples decoded, integrated and checked per block after the first: 64 KB, in L2.
 constexpr std::size_t kStreamBlockSamples = 8192;
 
-// Reserves room for the whole phase array and asks for transparent huge pages on it: a
-// 1e8-sample record is 800 MB, and with 4 KB pages its first touch costs 200 000 page faults.
-#ifndef MADV_POPULATE_WRITE
-#define MADV_POPULATE_WRITE 23  // Linux 5.14; older kernels refuse it and nothing is done
-#endif
-
 // Reserves the phase array of a long record (its largest array) in huge pages and returns a
 // thread that faults them in on the other core ahead of the integrator that writes them: the
 // kernel zeroes every fresh page, and that, not the integration, was most of a long binary
@@ -81,20 +74,13 @@ constexpr std::size_t kStreamBlockSamples = 8192;
 // populate the memory (no stores), so it does not race with the writer; joined on return.
 std::jthread reserve_phase(std::vector<double>& phase, std::size_t count) {
   phase.reserve(count);
-  constexpr std::uintptr_t huge = std::uintptr_t{2} << 20;
-  const auto begin = (reinterpret_cast<std::uintptr_t>(phase.data()) + huge - 1) & ~(huge - 1);
-  const auto end = (reinterpret_cast<std::uintptr_t>(phase.data() + count)) & ~(huge - 1);
-  if (end <= begin) return {};
-  ::madvise(reinterpret_cast<void*>(begin), end - begin, MADV_HUGEPAGE);
-  if (end - begin < 8 * huge || std::thread::hardware_concurrency() < 2) return {};
+  constexpr std::size_t huge = std::size_t{2} << 20;
+  const std::size_t advised = detail::advise_huge_pages(phase.data(), count * sizeof(double));
+  if (advised < 8 * huge || std::thread::hardware_concurrency() < 2) return {};
   // The small pages before the first and after the last huge page too (up to 4 MB, ~600 page
   // faults of the writer on 1e7 samples otherwise: tens of microseconds each on a VM).
-  constexpr std::uintptr_t small = 4096;
-  const auto first = (reinterpret_cast<std::uintptr_t>(phase.data()) + small - 1) & ~(small - 1);
-  const auto last = (reinterpret_cast<std::uintptr_t>(phase.data() + count)) & ~(small - 1);
-  return std::jthread([first, last] {
-    ::madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
-  });
+  const double* data = phase.data();
+  return std::jthread([data, count] { detail::populate_pages(data, count * sizeof(double)); });
 }
 
 struct FreeDeleter {
@@ -112,7 +98,7 @@ std::unique_ptr<double[], FreeDeleter> read_buffer(std::size_t count) {
   if (bytes >= huge) {
     const std::size_t rounded = (bytes + huge - 1) / huge * huge;
     p = std::aligned_alloc(huge, rounded);
-    if (p != nullptr) ::madvise(p, rounded, MADV_HUGEPAGE);
+    if (p != nullptr) detail::advise_huge_pages(p, rounded);
   } else {
     p = std::malloc(bytes);
   }
