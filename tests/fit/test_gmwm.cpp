@@ -485,8 +485,10 @@ TEST(GmwmMonteCarlo, DISABLED_CoverageOnIndependentRecords) {
 // The study behind docs/fit.md: 200 records of 3 h (IMUNOISE_GMWM_RUNS overrides). Coverage must
 // lie in the binomial 99 % band around 0.95 (n = 200: [0.91, 0.99]); bias within 3 MC standard
 // errors or 2 % of the truth, whichever is larger.
-// DISABLED until validated at 200 runs: 16 runs of 3 h measured N 14/16, K 12/16, GM1 sigma
-// 12/16, GM1 T_c 14/16, GM2 sigma 14/16, GM2 T_c 13/16 covered; auto picked N+K+GM+GM in 10/16.
+// DISABLED: the 200 runs (2026-12-05, 193 s) covered N 184, K 174, GM1 sigma 180, GM1 T_c 185,
+// GM2 sigma 180, GM2 T_c 168 of 200 (band [180, 196]); K's mean error -15 %, GM2 T_c's +135 %;
+// auto picked N+K+GM+GM in 96/200. K and GM2 T_c fail; docs/fit.md traces it to the estimated
+// weight (with the weight at the truth: 186, 188, 189, 193, 192, 176).
 TEST(SlowGmwmMonteCarlo, DISABLED_CoverageBiasAndSelection3h) {
   const int runs = std::getenv("IMUNOISE_GMWM_RUNS") ? std::atoi(std::getenv("IMUNOISE_GMWM_RUNS")) : 200;
   const Coverage c = monte_carlo(runs, 3.0, true, 5000);
