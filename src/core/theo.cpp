@@ -58,7 +58,11 @@ std::vector<DevPoint> theo1(std::span<const double> phase, double tau0_s,
     // Spans in chunks of 64 over the threads (each chunk owns its slots of by_span).
     constexpr std::size_t kChunk = 64;
     const std::size_t chunks = (k + kChunk - 1) / kChunk;
-    const unsigned workers = count * k < 200000 ? 1 : options.threads;
+    // A second thread pays off only for about a millisecond of work: starting and joining one
+    // cost ~0.5 ms on the 2026-12-05 VM (its stack and TLS fault in at ~26 us a page), and
+    // span_sums does ~3 terms a nanosecond (theo1 on 2,000 samples: 2 threads 7.1-8.0 ms
+    // whole process, 1 thread 6.4-6.6 ms).
+    const unsigned workers = count * k < 4'000'000 ? 1 : options.threads;
     detail::parallel_for(chunks, workers, [&](std::size_t c) {
       const std::size_t d0 = c * kChunk;
       const std::size_t d1 = std::min(k, d0 + kChunk);
