@@ -107,22 +107,33 @@ __attribute__((always_inline, target("avx512f,fma"))) inline void load_window(co
   for (int q = 0; q < Count; ++q) w[q] = load(p + 8 * q);
 }
 
-// The term of factor m + J at the eight starts of the step, from the windows of each stream.
-// Second differences: the far sample c by an unaligned load (load ports are idle here, the
-// shuffle unit is not), and the first three factors as (c - b) - (b - a), which runs on the
-// adders while the other five keep the multiply-add units busy: 21 % faster on Zen 5 than
-// shuffling both windows with one form (bench_deviation oadev_all; docs/performance.md).
-template <int Order, int J>
+// How a second difference's terms are formed; the best depends on the core's execution ports.
+// separate_adders: b shuffled out of the loaded window and the first three factors as
+// (c - b) - (b - a), which runs on the adders while the other five keep the multiply-add units
+// busy: 21 % faster on Zen 5 (separate add and multiply-add pipes, an idle shuffle unit) than
+// one form for all (bench_deviation oadev_all; docs/performance.md). shared_ports: b and c by
+// unaligned loads and every factor as c - 2b + a, for cores whose adds, multiply-adds and
+// shuffles share two vector ports (Intel): 27 % faster than separate_adders on a Xeon 6.207
+// (2026-12-06), where that form is bound by its 34 port operations per 64 terms.
+enum class Form { separate_adders, shared_ports };
+
+// The term of factor m + J at the eight starts of the step, from the windows of each stream;
+// the far sample c by an unaligned load (the load ports have room on every core measured).
+template <int Order, Form F, int J>
 __attribute__((always_inline, target("avx512f,fma"))) inline Vec8 run_term(const Vec8& a, const Vec8 (&w1)[2],
-                                                                           const double* x2, const Vec8 (&w2)[3],
-                                                                           const double* x3) {
+                                                                           const double* x1, const double* x2,
+                                                                           const Vec8 (&w2)[3], const double* x3) {
   if constexpr (Order == 2) {
-    const Vec8 b = shifted<J>(w1);
     const Vec8 c = load(x2 + 2 * J);
-    if constexpr (J < 3) {
-      return (c - b) - (b - a);
+    if constexpr (F == Form::shared_ports) {
+      return c - 2.0 * load(x1 + J) + a;
     } else {
-      return c - 2.0 * b + a;
+      const Vec8 b = shifted<J>(w1);
+      if constexpr (J < 3) {
+        return (c - b) - (b - a);
+      } else {
+        return c - 2.0 * b + a;
+      }
     }
   } else {
     // Third differences as (d - a) - 3 (c - b): two adds and one multiply-add, balanced
@@ -132,15 +143,15 @@ __attribute__((always_inline, target("avx512f,fma"))) inline Vec8 run_term(const
   }
 }
 
-template <int Order, int J>
+template <int Order, Form F, int J>
 __attribute__((always_inline, target("avx512f,fma"))) inline void add_term(Vec8& acc, const Vec8& a, const Vec8 (&w1)[2],
-                                                                           const double* x2, const Vec8 (&w2)[3],
-                                                                           const double* x3) {
-  const Vec8 d = run_term<Order, J>(a, w1, x2, w2, x3);
+                                                                           const double* x1, const double* x2,
+                                                                           const Vec8 (&w2)[3], const double* x3) {
+  const Vec8 d = run_term<Order, F, J>(a, w1, x1, x2, w2, x3);
   acc += d * d;
 }
 
-template <int Order, std::size_t... J>
+template <int Order, Form F, std::size_t... J>
 __attribute__((always_inline, target("avx512f,fma"))) inline void run_sums(const double* x, std::size_t m,
                                                                            std::size_t count, std::size_t readable,
                                                                            double* sums,
@@ -154,9 +165,9 @@ __attribute__((always_inline, target("avx512f,fma"))) inline void run_sums(const
   const std::size_t vector_end = std::min(count, readable >= kSlack ? readable - kSlack : 0);
   for (; k + kLanes <= vector_end; k += kLanes) {
     const Vec8 a = load(x + k);
-    load_window(x + k + m, w1);
+    if constexpr (Order == 3 || F == Form::separate_adders) load_window(x + k + m, w1);
     if constexpr (Order == 3) load_window(x + k + 2 * m, w2);
-    (add_term<Order, static_cast<int>(J)>(acc[J], a, w1, x + k + 2 * m, w2, x + k + 3 * m), ...);
+    (add_term<Order, F, static_cast<int>(J)>(acc[J], a, w1, x + k + m, x + k + 2 * m, w2, x + k + 3 * m), ...);
   }
   for (std::size_t j = 0; j < 8; ++j) {
     const Vec8& s = acc[j];
@@ -166,18 +177,29 @@ __attribute__((always_inline, target("avx512f,fma"))) inline void run_sums(const
   }
 }
 
+/// The form for this machine's cores, chosen once: the vendor decides the port layout (both
+/// forms round differently, by ~1e-16 of a term, so one machine always uses the same one).
+bool shared_ports() {
+  static const bool intel = __builtin_cpu_is("intel");
+  return intel;
+}
+
 }  // namespace
 
 __attribute__((target("avx512f,fma"))) void sum_sq_second_difference_run8(const double* x, std::size_t m,
                                                                           std::size_t count, std::size_t readable,
                                                                           double* sums) {
-  run_sums<2>(x, m, count, readable, sums, std::make_index_sequence<8>{});
+  if (shared_ports()) {
+    run_sums<2, Form::shared_ports>(x, m, count, readable, sums, std::make_index_sequence<8>{});
+  } else {
+    run_sums<2, Form::separate_adders>(x, m, count, readable, sums, std::make_index_sequence<8>{});
+  }
 }
 
 __attribute__((target("avx512f,fma"))) void sum_sq_third_difference_run8(const double* x, std::size_t m,
                                                                          std::size_t count, std::size_t readable,
                                                                          double* sums) {
-  run_sums<3>(x, m, count, readable, sums, std::make_index_sequence<8>{});
+  run_sums<3, Form::separate_adders>(x, m, count, readable, sums, std::make_index_sequence<8>{});
 }
 
 bool difference_runs_available() {
