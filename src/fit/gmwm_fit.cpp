@@ -1,5 +1,6 @@
 // GMWM: starting values, iterated weights, WVIC selection and intervals (gmwm.hpp).
 #include <algorithm>
+#include <cstdlib>
 #include <cmath>
 #include <limits>
 #include <numbers>
