@@ -278,16 +278,15 @@ struct Weighted {
   int weight_passes = 0;
 };
 
-/// The covariance of the wavelet variances for the intervals: sigma (the model's, at p) with
-/// each scale's row and column rescaled by a_j(p_-j) / a_j(p), where p_-j is p refitted without
-/// scale j (at the fitted weight less that scale). Why: at p a record whose long scales happen
+/// The covariance of the wavelet variances for the intervals: sigma (the model's at p, where its
+/// wavelet variances are a_fit) with each scale's row and column rescaled by a_j(p_-j) / a_j(p),
+/// where p_-j is p refitted without scale j (at the fitted weight less that scale). Why: at p a record whose long scales happen
 /// to be low has a small K, hence a small variance at those scales and an interval narrowest
 /// when K is lowest (docs/fit.md, the 200-record study: K covered 174 of 200); a scale's
 /// variance from a fit that did not see its own estimate does not shrink with it (185 of 200).
 Matrix leave_one_scale_out_covariance(const Layout& layout, const GmwmCurve& c, const Vector& p,
-                                      const Matrix& sigma) {
+                                      const Vector& a_fit, const Matrix& sigma) {
   const Eigen::Index k = sigma.rows();
-  const Vector a = model_avar(layout, p, c, nullptr);
   Vector scale = Vector::Ones(k);
   for (Eigen::Index j = 0; j < k; ++j) {
     GmwmCurve rest = c;
@@ -302,7 +301,7 @@ Matrix leave_one_scale_out_covariance(const Layout& layout, const GmwmCurve& c, 
     const LmResult refit = levenberg_marquardt(layout, rest, whitener_of(sigma_rest, rest), p,
                                                bounds_for(layout, rest), c.max_iterations);
     const double a_rest = model_avar(layout, refit.p, c, nullptr)(j);
-    if (a_rest > 0.0 && a(j) > 0.0 && std::isfinite(a_rest)) scale(j) = a_rest / a(j);
+    if (a_rest > 0.0 && a_fit(j) > 0.0 && std::isfinite(a_rest)) scale(j) = a_rest / a_fit(j);
   }
   return scale.asDiagonal() * sigma * scale.asDiagonal();
 }
@@ -618,7 +617,7 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
 
   // Intervals: delta method on the log scale, W at the fitted model, the estimates' covariance
   // with each scale's variance from the fit without that scale.
-  const Matrix sigma_ci = leave_one_scale_out_covariance(layout, c, lm.p, fin.sigma);
+  const Matrix sigma_ci = leave_one_scale_out_covariance(layout, c, lm.p, model, fin.sigma);
   const Matrix cov = log_covariance(fin.whiten * d, fin.whiten * sigma_ci * fin.whiten.transpose(), fixed);
   std::vector<Vector> boot;
   if (options.bootstrap > 0) {
