@@ -625,6 +625,29 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
     result.bootstrap_replicates = static_cast<int>(boot.size());
   }
   const double zq = detail_normal_quantile(options.level);
+  // Reported intervals: the hull of the delta-method (Wald) interval and the profile interval
+  // (gmwm_profile.cpp). Wald alone is too narrow where the objective is curved in the parameter
+  // (T_c of a term near the record's end), the profile alone where the weight is estimated at
+  // the fit (K); docs/fit.md has the coverage of each. The profile's rise is scaled so that a
+  // locally linear model gives the Wald interval exactly: rise = zq^2 Var_sandwich / Var_W, with
+  // Var_W = (D' W D)^-1 the curvature the objective has in that parameter. Identification keeps
+  // to the Wald ends: a profile that reaches a bound says another labelling of the same curve
+  // fits as well, which widens the interval but does not make the term noise.
+  std::vector<std::pair<double, double>> wald(static_cast<std::size_t>(layout.parameters));
+  std::vector<std::pair<double, double>> ends(wald.size());
+  {
+    const auto kk = static_cast<Eigen::Index>(k);
+    const Matrix var_w = log_covariance(fin.whiten * d, Matrix::Identity(kk, kk), fixed);
+    for (Eigen::Index j = 0; j < layout.parameters; ++j) {
+      const auto u = static_cast<std::size_t>(j);
+      const double sd = std::sqrt(cov(j, j));
+      wald[u] = ends[u] = {lm.p(j) - zq * sd, lm.p(j) + zq * sd};
+      if (!std::isfinite(sd) || !(var_w(j, j) > 0.0) || !std::isfinite(var_w(j, j))) continue;
+      const double rise = zq * zq * cov(j, j) / var_w(j, j);
+      const auto [lo, hi] = profile_interval(layout, c, fin.whiten, lm.p, lm.cost, j, rise, std::clamp(sd, 0.02, 1.0));
+      ends[u] = {std::min(ends[u].first, lo), std::max(ends[u].second, hi)};
+    }
+  }
   auto percentile = [&](Eigen::Index j, double q) {
     std::vector<double> v;
     for (const auto& b : boot) v.push_back(b(j));
@@ -645,9 +668,9 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
     const bool floor = fixed[static_cast<std::size_t>(j)];
     e.magnitude.value = mag;
     e.magnitude_fitted = mag;
-    e.magnitude.ci_low = std::isfinite(sd) ? std::exp(0.5 * (lm.p(j) - zq * sd)) : 0.0;
-    e.magnitude.ci_high = std::isfinite(sd) ? std::exp(0.5 * (lm.p(j) + zq * sd))
-                                            : std::exp(0.5 * bounds.hi(j));
+    const auto [mag_lo, mag_hi] = ends[static_cast<std::size_t>(j)];
+    e.magnitude.ci_low = std::isfinite(sd) && mag_lo > bounds.lo(j) ? std::exp(0.5 * mag_lo) : 0.0;
+    e.magnitude.ci_high = std::isfinite(sd) ? std::exp(0.5 * mag_hi) : std::exp(0.5 * bounds.hi(j));
     e.magnitude.identified = !floor && sd < 1.0 / zq;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     e.shape.ci_low = e.shape.ci_high = nan;
@@ -659,21 +682,23 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
       const double ssd = std::sqrt(cov(s, s));
       e.shape.value = std::exp(lm.p(s));
       e.shape_fitted = e.shape.value;
-      e.shape.ci_low = std::isfinite(ssd) ? std::exp(lm.p(s) - zq * ssd) : 0.0;
-      e.shape.ci_high = std::isfinite(ssd) ? std::exp(lm.p(s) + zq * ssd) : std::numeric_limits<double>::infinity();
+      const auto [shape_lo, shape_hi] = ends[static_cast<std::size_t>(s)];
+      e.shape.ci_low = std::isfinite(ssd) ? std::exp(shape_lo) : 0.0;
+      e.shape.ci_high = std::isfinite(ssd) ? std::exp(shape_hi) : std::numeric_limits<double>::infinity();
       e.shape.identified = e.magnitude.identified && std::isfinite(ssd);
       if (!boot.empty()) {
         e.shape_boot_low = std::exp(percentile(s, 0.5 - 0.5 * options.level));
         e.shape_boot_high = std::exp(percentile(s, 0.5 + 0.5 * options.level));
       }
+      const auto [wald_lo, wald_hi] = wald[static_cast<std::size_t>(s)];
       if (e.kind == GmwmTerm::GM && e.shape.identified &&
-          (e.shape.ci_low < span_lo || e.shape.ci_high > span_hi)) {
+          (std::exp(wald_lo) < span_lo || std::exp(wald_hi) > span_hi)) {
         e.shape.identified = false;
         e.magnitude.identified = false;
         e.shape.note = e.magnitude.note = fmt::format(
             "correlation time {:.4g} s, its interval [{:.4g}, {:.4g}] s reaches outside the record's "
             "span [{:g}, {:g}] s: a Gauss-Markov term that white noise or a random walk describes",
-            e.shape.value, e.shape.ci_low, e.shape.ci_high, span_lo, span_hi);
+            e.shape.value, std::exp(wald_lo), std::exp(wald_hi), span_lo, span_hi);
       }
     }
     if (!e.magnitude.identified && e.magnitude.note.empty()) {

@@ -1,0 +1,100 @@
+// GMWM: profile intervals of one parameter (gmwm_detail.hpp).
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "gmwm_detail.hpp"
+
+namespace imunoise::fit::detail {
+namespace {
+
+/// Whether the refitted point q is still the model fitted at p: no other term's magnitude has
+/// run to its floor that was above it at p, and the Gauss-Markov terms keep their order of
+/// correlation time. Past such a point the profile describes another model (one term taking
+/// over another's role), so its ends would say nothing about this model's parameter.
+bool same_model(const Layout& layout, const Bounds& bounds, const Vector& p, const Vector& q, Eigen::Index j) {
+  constexpr double kAtFloor = 1e-3;  // log-variance units: LM clamps to the bound exactly
+  for (std::size_t t = 0; t < layout.terms.size(); ++t) {
+    const Eigen::Index i = layout.magnitude[t];
+    if (i == j) continue;
+    if (p(i) > bounds.lo(i) + kAtFloor && q(i) <= bounds.lo(i) + kAtFloor) return false;
+  }
+  for (std::size_t a = 0; a < layout.terms.size(); ++a) {
+    for (std::size_t b = 0; b < layout.terms.size(); ++b) {
+      if (layout.terms[a] != GmwmTerm::GM || layout.terms[b] != GmwmTerm::GM) continue;
+      const Eigen::Index sa = layout.shape[a], sb = layout.shape[b];
+      if (p(sa) < p(sb) && !(q(sa) < q(sb))) return false;
+    }
+  }
+  return true;
+}
+
+/// The objective with parameter j held at `value` and every other parameter refitted from
+/// `warm` (which it updates: the next point starts where this one ended); +inf where the
+/// refit leaves the model fitted at p (same_model).
+double profiled_cost(const Layout& layout, const GmwmCurve& c, const Matrix& whiten, const Bounds& bounds,
+                     const Vector& p, Eigen::Index j, double value, Vector& warm) {
+  Bounds held = bounds;
+  held.lo(j) = held.hi(j) = value;
+  Vector start = warm;
+  start(j) = value;
+  const LmResult r = levenberg_marquardt(layout, c, whiten, start, held, c.max_iterations);
+  if (!std::isfinite(r.cost) || !same_model(layout, bounds, p, r.p, j)) return std::numeric_limits<double>::infinity();
+  warm = r.p;
+  return r.cost;
+}
+
+/// The end of the interval on one side (direction +1 or -1): march out with doubling steps
+/// until the profiled objective rises by more than `rise`, then bisect the bracket.
+double profile_end(const Layout& layout, const GmwmCurve& c, const Matrix& whiten, const Bounds& bounds,
+                   const Vector& p, double cost, Eigen::Index j, double rise, double step, int direction) {
+  constexpr int kExpansions = 12;
+  constexpr int kBisections = 10;
+  const double edge = direction > 0 ? bounds.hi(j) : bounds.lo(j);
+  double inside = p(j);
+  Vector warm_inside = p;
+  double outside = edge;
+  bool bracketed = false;
+  for (int e = 0; e < kExpansions; ++e) {
+    double v = inside + direction * step;
+    const bool at_edge = direction > 0 ? v >= edge : v <= edge;
+    if (at_edge) v = edge;
+    Vector warm = warm_inside;
+    const double q = profiled_cost(layout, c, whiten, bounds, p, j, v, warm);
+    if (std::isfinite(q) && q - cost <= rise) {
+      inside = v;
+      warm_inside = warm;
+      if (at_edge) return edge;
+      step *= 2.0;
+    } else {
+      outside = v;
+      bracketed = true;
+      break;
+    }
+  }
+  if (!bracketed) return inside;
+  for (int b = 0; b < kBisections; ++b) {
+    const double v = 0.5 * (inside + outside);
+    Vector warm = warm_inside;
+    const double q = profiled_cost(layout, c, whiten, bounds, p, j, v, warm);
+    if (std::isfinite(q) && q - cost <= rise) {
+      inside = v;
+      warm_inside = warm;
+    } else {
+      outside = v;
+    }
+  }
+  return inside;
+}
+
+}  // namespace
+
+std::pair<double, double> profile_interval(const Layout& layout, const GmwmCurve& c, const Matrix& whiten,
+                                           const Vector& p, double cost, Eigen::Index j, double rise,
+                                           double step) {
+  const Bounds bounds = bounds_for(layout, c);
+  return {profile_end(layout, c, whiten, bounds, p, cost, j, rise, step, -1),
+          profile_end(layout, c, whiten, bounds, p, cost, j, rise, step, +1)};
+}
+
+}  // namespace imunoise::fit::detail
