@@ -439,7 +439,8 @@ Coverage monte_carlo(int runs, double hours, bool select, std::uint64_t seed0) {
       std::printf("run %d z:", r);
       for (int p = 0; p < 6; ++p) {
         const double sd = (std::log(est[p]->ci_high) - std::log(est[p]->ci_low)) / (2.0 * 1.959964);
-        std::printf(" %+.2f%s", (std::log(est[p]->value) - std::log(truth[p])) / sd, est[p]->identified ? "" : "*");
+        const char side = truth[p] < est[p]->ci_low ? 'L' : truth[p] > est[p]->ci_high ? 'H' : '.';
+        std::printf(" %+.2f%s%c", (std::log(est[p]->value) - std::log(truth[p])) / sd, est[p]->identified ? "" : "*", side);
       }
       std::printf("  J %.1f/%zu\n", g.j_statistic, g.dof);
     }
@@ -473,33 +474,42 @@ void print_coverage(const Coverage& c) {
 // 0.26 %, so with six parameters a correct 95 % interval fails the ">= 15 of 20" check in ~1.6 %
 // of seeds sets (the seeds are fixed: the outcome is deterministic, the bound says how
 // unlucky a correct method would have to be). The selection is checked on 3 h records (Slow*).
-// DISABLED: measured 20 one-hour records, GM2 T_c covered 13/20 (below the bound 15; GM2 T_c
-// mean error +95 %, RMSE 291 %: on 1 h records the 20 s term is not separated from K). Not done.
-TEST(GmwmMonteCarlo, DISABLED_CoverageOnIndependentRecords) {
+// Measured 2026-12-06 with the Wald-profile hull: 19, 20, 19, 18, 18, 16 of 20 (GM2 T_c was 13/20
+// with Wald alone: on 1 h records the 20 s term is barely separated from K, and only the profile
+// sees how far its T_c can move). Label "statistics": the asan run skips it.
+TEST(GmwmMonteCarlo, CoverageOnIndependentRecords) {
   const Coverage c = monte_carlo(20, 1.0, false, 1000);
   print_coverage(c);
   ASSERT_EQ(c.runs, 20);
   for (int p = 0; p < 6; ++p) EXPECT_GE(c.covered[p], 15) << "parameter " << p;
 }
 
-// The study behind docs/fit.md: 200 records of 3 h (IMUNOISE_GMWM_RUNS overrides). Coverage must
-// lie in the binomial 99 % band around 0.95 (n = 200: [0.91, 0.99]); bias within 3 MC standard
-// errors or 2 % of the truth, whichever is larger.
-// DISABLED: the 200 runs (2026-12-05, 193 s) covered N 184, K 174, GM1 sigma 180, GM1 T_c 185,
-// GM2 sigma 180, GM2 T_c 168 of 200 (band [180, 196]); K's mean error -15 %, GM2 T_c's +135 %;
-// auto picked N+K+GM+GM in 96/200. K and GM2 T_c fail; docs/fit.md traces it to the estimated
-// weight (with the weight at the truth: 186, 188, 189, 193, 192, 176). Since the intervals'
-// leave-one-scale-out covariance (2026-12-06): 184, 185, 180, 185, 180, 173 — GM2 T_c below the
-// band, K's mean error and the selection rate still fail.
-TEST(SlowGmwmMonteCarlo, DISABLED_CoverageBiasAndSelection3h) {
-  const int runs = std::getenv("IMUNOISE_GMWM_RUNS") ? std::atoi(std::getenv("IMUNOISE_GMWM_RUNS")) : 200;
-  const Coverage c = monte_carlo(runs, 3.0, true, 5000);
+int study_runs() { return std::getenv("IMUNOISE_GMWM_RUNS") ? std::atoi(std::getenv("IMUNOISE_GMWM_RUNS")) : 200; }
+
+// The study behind docs/fit.md: 200 records of 3 h (IMUNOISE_GMWM_RUNS overrides), seeds
+// 5000-5199, fitted as N,K,GM,GM. Every parameter's 95 % interval must cover the truth as often as
+// a correct one would: inside the binomial 99 % band around 0.95 (n = 200: [180, 196]); the
+// issue's 90-98 % is [180, 196] too. About 4 minutes on 2 cores: label slow, outside CI.
+TEST(SlowGmwmMonteCarlo, Coverage3h) {
+  const Coverage c = monte_carlo(study_runs(), 3.0, false, 5000);
   print_coverage(c);
   const boost::math::binomial_distribution<double> b(c.runs, 0.95);
   const double lo = boost::math::quantile(b, 0.005), hi = boost::math::quantile(boost::math::complement(b, 0.005));
   for (int p = 0; p < 6; ++p) {
-    EXPECT_GE(c.covered[p], lo) << p;
-    EXPECT_LE(c.covered[p], hi) << p;
+    EXPECT_GE(c.covered[p], lo) << "parameter " << p;
+    EXPECT_LE(c.covered[p], hi) << "parameter " << p;
+  }
+}
+
+// The same records for the bias (within 3 MC standard errors or 2 % of the truth, whichever is
+// larger) and for --terms auto picking the true model in most records.
+// DISABLED (2026-12-06, 200 records): K's mean error -17.7 % (a K reported not identified counts
+// as 0; 28 of 200), GM2 T_c's mean error large (a 20 s term traded with K on the long scales);
+// auto picked N+K+GM+GM in 96/200. Both fail; docs/fit.md has the tables. Not done.
+TEST(SlowGmwmMonteCarlo, DISABLED_BiasAndSelection3h) {
+  const Coverage c = monte_carlo(study_runs(), 3.0, true, 5000);
+  print_coverage(c);
+  for (int p = 0; p < 6; ++p) {
     const double mean = c.sum_rel[p] / c.runs;
     const double sd = std::sqrt(std::max(0.0, c.sum_rel2[p] / c.runs - mean * mean));
     EXPECT_LE(std::abs(mean), std::max(0.02, 3.0 * sd / std::sqrt(c.runs))) << p;
