@@ -85,13 +85,8 @@ inline std::vector<double> make_rate(std::size_t n, double tau0_s, double n_coef
 }
 
 /// Phase (x_0 = 0, x_k = tau0 sum of the first k rates, mean rate removed) and its oadev at the
-/// octave factors m = 1, 2, 4, ... with 2 m < n_phase: (m, avar).
-struct Curve {
-  std::vector<std::size_t> m;
-  std::vector<double> avar;
-  std::size_t n_phase = 0;
-};
-inline Curve octave_curve(const std::vector<double>& rate, double tau0_s) {
+/// octave factors m = 1, 2, 4, ... with 2 m < n_phase (the phase has rate.size() + 1 samples).
+inline std::vector<DevPoint> octave_points(const std::vector<double>& rate, double tau0_s) {
   double mean = 0.0;
   for (double v : rate) mean += v;
   mean /= static_cast<double>(rate.size());
@@ -101,12 +96,28 @@ inline Curve octave_curve(const std::vector<double>& rate, double tau0_s) {
     acc += static_cast<long double>((rate[i] - mean) * tau0_s);
     phase[i + 1] = static_cast<double>(acc);
   }
+  std::vector<std::size_t> m;
+  for (std::size_t f = 1; 2 * f < phase.size(); f *= 2) m.push_back(f);
+  return oadev(phase, tau0_s, m);
+}
+
+/// The same curve as (m, avar) for fit_gmwm.
+struct Curve {
+  std::vector<std::size_t> m;
+  std::vector<double> avar;
+  std::size_t n_phase = 0;
+};
+inline Curve curve_of(const std::vector<DevPoint>& points, std::size_t n_phase) {
   Curve c;
-  c.n_phase = phase.size();
-  for (std::size_t m = 1; 2 * m < c.n_phase; m *= 2) c.m.push_back(m);
-  const auto points = oadev(phase, tau0_s, c.m);
-  for (const auto& p : points) c.avar.push_back(p.dev * p.dev);
+  c.n_phase = n_phase;
+  for (const auto& p : points) {
+    c.m.push_back(p.m);
+    c.avar.push_back(p.dev * p.dev);
+  }
   return c;
+}
+inline Curve octave_curve(const std::vector<double>& rate, double tau0_s) {
+  return curve_of(octave_points(rate, tau0_s), rate.size() + 1);
 }
 
 }  // namespace imunoise::gmwm_test

@@ -488,8 +488,8 @@ int study_runs() { return std::getenv("IMUNOISE_GMWM_RUNS") ? std::atoi(std::get
 
 // The study behind docs/fit.md: 200 records of 3 h (IMUNOISE_GMWM_RUNS overrides), seeds
 // 5000-5199, fitted as N,K,GM,GM. Every parameter's 95 % interval must cover the truth as often as
-// a correct one would: inside the binomial 99 % band around 0.95 (n = 200: [180, 196]); the
-// issue's 90-98 % is [180, 196] too. About 4 minutes on 2 cores: label slow, outside CI.
+// a correct one would: inside the binomial 99 % band around 0.95 (n = 200: [180, 197]); the
+// issue's 90-98 % is [180, 196]. About 4 minutes on 2 cores: label slow, outside CI.
 TEST(SlowGmwmMonteCarlo, Coverage3h) {
   const Coverage c = monte_carlo(study_runs(), 3.0, false, 5000);
   print_coverage(c);
