@@ -229,7 +229,11 @@ TEST(GmwmFit, RecoversTheModelFromItsExactCurve) {
   EXPECT_NEAR(r.terms[2].shape.value / 2.0, 1.0, 1e-3);
   EXPECT_NEAR(r.terms[3].magnitude.value / 1e-4, 1.0, 1e-3);
   EXPECT_NEAR(r.terms[3].shape.value / 20.0, 1.0, 1e-3);
-  EXPECT_LT(r.j_statistic, 1e-6);
+  // The J test scores each scale's log(estimate / model) against the log of its chi-square law,
+  // whose mean lies below 0 (a chi-square's median is below its mean): on the exact expected
+  // curve each long scale (1-4 degrees of freedom) keeps a score of 0.1-0.45, nothing else, so
+  // J is a fraction of one on 14 dof (measured 0.34); a misfit of one sd at one scale adds ~1.
+  EXPECT_LT(r.j_statistic, 1.0);
 }
 
 // A fit stopped by its iteration limit reports no term as identified (the last iterate is no

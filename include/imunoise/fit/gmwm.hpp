@@ -42,11 +42,14 @@
 // non-negative least squares for each set of T_c starts, the T_c from the curve's bumps and
 // from grids a decade apart over the curve's tau span (never from constants tuned to a record).
 //
-// J test: e' [(I - P) S (I - P)]^+ e with e = Wh (a_hat - a(theta_hat)) the whitened residual,
+// J test: e' [(I - P) S (I - P)]^+ e with e = Wh r the whitened residual, r_i the log score of
+// scale i, (log(a_hat_i / a_i) - E) / sd of log(chi^2_nu / nu), times sqrt(Sigma_ii) (for a
+// large nu, a_hat_i - a_i; the long scales' skew taken out, docs/fit.md),
 // S = Wh Sigma Wh' and P the projector on the whitened Jacobian: the residual's own covariance
 // (delta method), so the statistic is chi^2(k - p) for an exact Gaussian model whatever W is; with
-// the efficient W it is Hansen's (1982) J = min objective. WVIC (Stebler et al. 2014):
-//   WVIC = J + 2 tr(W Cov(a_hat, a(theta_hat))),   Cov(a_hat, a(theta_hat)) = Sigma W D (D' W D)^+ D'
+// the efficient W and large nu it is Hansen's (1982) J = min objective. WVIC (Stebler et al. 2014)
+// takes the objective itself:
+//   WVIC = objective + 2 tr(W Cov(a_hat, a(theta_hat))),   Cov(a_hat, a(theta_hat)) = Sigma W D (D' W D)^+ D'
 // (D the Jacobian in the log parameters; delta method), an estimate of the prediction risk
 // E[(a* - a(theta_hat))' W (a* - a(theta_hat))] of an independent copy a*, as Mallows' Cp.
 // With Sigma the candidate's own model covariance and W common to all candidates.
