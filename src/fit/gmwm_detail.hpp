@@ -74,12 +74,12 @@ LmResult levenberg_marquardt(const Layout& layout, const GmwmCurve& c, const Mat
                              Vector p, const Bounds& bounds, int max_iterations);
 
 /// The profile interval of parameter j: the values v for which the objective with p(j) = v
-/// and every other parameter refitted (within bounds) exceeds `cost` (the objective at p, the
-/// optimum) by at most `rise`; found by doubling steps from p(j) (first `step`) and bisection.
-/// An end at a bound is returned as that bound.
+/// and every other parameter refitted (within `bounds`, those of the fit: bounds_for) exceeds
+/// `cost` (the objective at p, the optimum) by at most `rise`; found by doubling steps from p(j)
+/// (first `step`) and bisection. An end at a bound is returned as that bound.
 std::pair<double, double> profile_interval(const Layout& layout, const GmwmCurve& c, const Matrix& whiten,
-                                           const Vector& p, double cost, Eigen::Index j, double rise,
-                                           double step);
+                                           const Bounds& bounds, const Vector& p, double cost, Eigen::Index j,
+                                           double rise, double step);
 
 /// A fitted model with a given weight: the best of several starts.
 struct ModelFit {

@@ -188,8 +188,6 @@ std::vector<bool> at_floor(const Layout& layout, const Vector& p, const Bounds& 
   return out;
 }
 
-/// The generalised J statistic and its degrees of freedom (gmwm.hpp): e' C^+ e with C the
-/// covariance of the whitened residual e under the model, rank k - p.
 /// The residual a_hat - a(theta) for the J test with each scale's skew taken out. An Allan
 /// variance estimate is close to a (chi^2_nu / nu) with nu = 2 a^2 / Var (a few degrees of
 /// freedom at the long taus), whose upper tail the Gaussian J counts as far rarer than it is:
@@ -214,6 +212,8 @@ Vector log_score_residual(std::span<const double> avar_hat, const Vector& model,
   return r;
 }
 
+/// The generalised J statistic and its degrees of freedom (gmwm.hpp): e' C^+ e with C the
+/// covariance of the whitened residual e under the model, rank k - p.
 std::pair<double, std::size_t> j_test(const Vector& e, const Matrix& dw_all, const Matrix& s,
                                       const std::vector<bool>& fixed) {
   std::vector<Eigen::Index> free;
@@ -669,7 +669,8 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
       wald[u] = ends[u] = {lm.p(j) - zq * sd, lm.p(j) + zq * sd};
       if (!std::isfinite(sd) || !(var_w(j, j) > 0.0) || !std::isfinite(var_w(j, j))) continue;
       const double rise = zq * zq * cov(j, j) / var_w(j, j);
-      const auto [lo, hi] = profile_interval(layout, c, fin.whiten, lm.p, lm.cost, j, rise, std::clamp(sd, 0.02, 1.0));
+      const auto [lo, hi] = profile_interval(layout, c, fin.whiten, bounds, lm.p, lm.cost, j, rise,
+                                               std::clamp(sd, 0.02, 1.0));
       ends[u] = {std::min(ends[u].first, lo), std::max(ends[u].second, hi)};
     }
   }

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include "gmwm_detail.hpp"
 
@@ -53,36 +54,31 @@ double profile_end(const Layout& layout, const GmwmCurve& c, const Matrix& white
   const double edge = direction > 0 ? bounds.hi(j) : bounds.lo(j);
   double inside = p(j);
   Vector warm_inside = p;
-  double outside = edge;
-  bool bracketed = false;
-  for (int e = 0; e < kExpansions; ++e) {
-    double v = inside + direction * step;
-    const bool at_edge = direction > 0 ? v >= edge : v <= edge;
-    if (at_edge) v = edge;
+  // Whether v is inside the interval; if so it becomes the innermost known end.
+  auto accept = [&](double v) {
     Vector warm = warm_inside;
     const double q = profiled_cost(layout, c, whiten, bounds, p, j, v, warm);
-    if (std::isfinite(q) && q - cost <= rise) {
-      inside = v;
-      warm_inside = warm;
-      if (at_edge) return edge;
-      step *= 2.0;
-    } else {
+    if (!std::isfinite(q) || q - cost > rise) return false;
+    inside = v;
+    warm_inside = std::move(warm);
+    return true;
+  };
+  double outside = edge;
+  bool bracketed = false;
+  for (int e = 0; e < kExpansions && !bracketed; ++e) {
+    const double v = direction > 0 ? std::min(inside + step, edge) : std::max(inside - step, edge);
+    if (!accept(v)) {
       outside = v;
       bracketed = true;
-      break;
+    } else if (v == edge) {
+      return edge;
     }
+    step *= 2.0;
   }
   if (!bracketed) return inside;
   for (int b = 0; b < kBisections; ++b) {
     const double v = 0.5 * (inside + outside);
-    Vector warm = warm_inside;
-    const double q = profiled_cost(layout, c, whiten, bounds, p, j, v, warm);
-    if (std::isfinite(q) && q - cost <= rise) {
-      inside = v;
-      warm_inside = warm;
-    } else {
-      outside = v;
-    }
+    if (!accept(v)) outside = v;
   }
   return inside;
 }
@@ -90,9 +86,8 @@ double profile_end(const Layout& layout, const GmwmCurve& c, const Matrix& white
 }  // namespace
 
 std::pair<double, double> profile_interval(const Layout& layout, const GmwmCurve& c, const Matrix& whiten,
-                                           const Vector& p, double cost, Eigen::Index j, double rise,
-                                           double step) {
-  const Bounds bounds = bounds_for(layout, c);
+                                           const Bounds& bounds, const Vector& p, double cost, Eigen::Index j,
+                                           double rise, double step) {
   return {profile_end(layout, c, whiten, bounds, p, cost, j, rise, step, -1),
           profile_end(layout, c, whiten, bounds, p, cost, j, rise, step, +1)};
 }

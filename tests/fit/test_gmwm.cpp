@@ -529,22 +529,14 @@ int j_rejections(int runs, double hours, double alpha, std::uint64_t seed0, bool
   int rejected = 0;
   for (int r = 0; r < runs; ++r) {
     const auto rate = gmwm_test::make_rate(n, kTau0, 1.7e-4, 1e-4, {}, seed0 + static_cast<std::uint64_t>(r));
-    const auto c = gmwm_test::octave_curve(rate, kTau0);
+    const auto pts = gmwm_test::octave_points(rate, kTau0);
+    const auto c = gmwm_test::curve_of(pts, rate.size() + 1);
     GmwmOptions o;
     parse_gmwm_terms("N,K", o);
     o.full_weight = full_weight;
     const GmwmResult g = fit_gmwm(c.m, c.avar, c.n_phase, kTau0, o);
     rejected += g.j_p_value < alpha;
     if (wls_rejections != nullptr) {
-      std::vector<DevPoint> pts;
-      for (std::size_t i = 0; i < c.m.size(); ++i) {
-        DevPoint p;
-        p.m = c.m[i];
-        p.tau_s = static_cast<double>(c.m[i]) * kTau0;
-        p.dev = std::sqrt(c.avar[i]);
-        p.n = c.n_phase - 2 * c.m[i];
-        pts.push_back(p);
-      }
       FitOptions fo;
       fo.terms[kQ] = fo.terms[kB] = false;
       fo.model_mismatch = false;
