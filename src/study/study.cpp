@@ -373,9 +373,10 @@ void study_imu(Study& study) {
   const auto g = on_axes(gyros), a = on_axes(accels);
   nav::NavOptions o = nav_options(study.options, NoiseCoefficients{});
   Study::ImuNavigation imu;
-  for (const auto* ch : gyros) o.measured_s = o.measured_s == 0.0 ? ch->record.n_samples / ch->record.rate_hz
-                                                                  : std::min(o.measured_s, ch->record.n_samples / ch->record.rate_hz);
-  for (const auto* ch : accels) o.measured_s = std::min(o.measured_s, ch->record.n_samples / ch->record.rate_hz);
+  // The navigation run is as long as the shortest record measured.
+  auto duration_s = [](const auto* ch) { return static_cast<double>(ch->record.n_samples) / ch->record.rate_hz; };
+  for (const auto* ch : gyros) o.measured_s = o.measured_s == 0.0 ? duration_s(ch) : std::min(o.measured_s, duration_s(ch));
+  for (const auto* ch : accels) o.measured_s = std::min(o.measured_s, duration_s(ch));
   for (std::size_t i = 0; i < 3; ++i) {
     o.axes[i] = nav::GyroAxisNoise{};
     if (g[i]) {

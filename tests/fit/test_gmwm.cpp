@@ -474,6 +474,28 @@ void print_coverage(const Coverage& c) {
   if (c.selected_true > 0) std::printf("  auto selected N+K+GM+GM in %d/%d\n", c.selected_true, c.runs);
 }
 
+// Record 27 of the 3 h study (seed 5027): the three weight passes alternate between K with the
+// 20 s term (objectives 16.5, 15.6) and K at its floor with the slow term carrying the random walk
+// (95.4). The last iterate used to be reported: objective 422 at its own weight, K not identified,
+// J 24.8 on 14. A fixed point with K 9.84e-6 (truth 1e-5) and J 16.6 exists (docs/fit.md, "A
+// weight iteration that cycles"); the fit must end there, or at another proper fixed point with
+// K identified and the truth inside its interval.
+TEST(GmwmFit, ACyclingWeightIterationEndsAtAFixedPoint) {
+  const auto n = static_cast<std::size_t>(3.0 * 3600.0 / kTau0);
+  const auto rate = gmwm_test::make_rate(n, kTau0, kN, kK, kAr1, 5027);
+  const auto c = gmwm_test::octave_curve(rate, kTau0);
+  GmwmOptions o;
+  parse_gmwm_terms("N,K,GM,GM", o);
+  const GmwmResult g = fit_gmwm(c.m, c.avar, c.n_phase, kTau0, o);
+  ASSERT_EQ(g.terms.size(), 4U);
+  const Coefficient& k = g.terms[1].magnitude;
+  EXPECT_TRUE(k.identified) << k.note;
+  EXPECT_LE(k.ci_low, kK);
+  EXPECT_GE(k.ci_high, kK);
+  // J on 14 dof: 24.8 is its 96th percentile; the fixed point's 16.6 is unremarkable.
+  EXPECT_LT(g.j_statistic, 20.0);
+}
+
 // CI size: 20 one-hour records. Bounds fixed beforehand from Binomial(20, 0.95): P(X <= 14) =
 // 0.26 %, so with six parameters a correct 95 % interval fails the ">= 15 of 20" check in ~1.6 %
 // of seeds sets (the seeds are fixed: the outcome is deterministic, the bound says how

@@ -56,7 +56,9 @@ TEST(GmwmFlickerMixture, FlatToItsStatedRippleOverTheSpan) {
     // it (at most 10^(1 + 1/2) times the top, two per decade).
     for (std::size_t q = 0; q < mix.correlation_time_s.size(); ++q) {
       EXPECT_GT(mix.variance_per_b2[q], 0.0);
-      if (q > 0) EXPECT_GT(mix.correlation_time_s[q], mix.correlation_time_s[q - 1]);
+      if (q > 0) {
+        EXPECT_GT(mix.correlation_time_s[q], mix.correlation_time_s[q - 1]);
+      }
     }
     EXPECT_GE(mix.correlation_time_s.front(), 0.09 * static_cast<double>(s.lo) * s.tau0 / 1.89262);
     EXPECT_LE(mix.correlation_time_s.back(), 31.7 * static_cast<double>(s.hi) * s.tau0 / 1.89262);
