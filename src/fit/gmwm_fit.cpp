@@ -348,13 +348,20 @@ OwnWeight at_own_weight(const Layout& layout, const GmwmCurve& c, const Vector& 
   return o;
 }
 
-/// The J statistic of p at its own weight o, as fit_gmwm reports it.
-double own_j(const Layout& layout, const GmwmCurve& c, const Vector& p, const OwnWeight& o) {
+/// The J statistic of the model p and its degrees of freedom, with sigma the covariance of the
+/// wavelet variances and wh the whitener of the weight (the log-score residual, j_test).
+std::pair<double, std::size_t> j_of(const Layout& layout, const GmwmCurve& c, const Vector& p, const Matrix& sigma,
+                                    const Matrix& wh) {
   Matrix d;
   const Vector model = model_avar(layout, p, c, &d);
-  const Vector e = o.whiten * log_score_residual(c.avar, model, o.sigma);
+  const Vector e = wh * log_score_residual(c.avar, model, sigma);
   const auto fixed = at_floor(layout, p, bounds_for(layout, c));
-  return j_test(e, o.whiten * d, o.whiten * o.sigma * o.whiten.transpose(), fixed).first;
+  return j_test(e, wh * d, wh * sigma * wh.transpose(), fixed);
+}
+
+/// The J statistic of p at its own weight o, as fit_gmwm reports it.
+double own_j(const Layout& layout, const GmwmCurve& c, const Vector& p, const OwnWeight& o) {
+  return j_of(layout, c, p, o.sigma, o.whiten).first;
 }
 
 /// p carried to a fixed point of the weight iteration by local refits only (LM from p at the
@@ -612,8 +619,7 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
         // parameters the data determine (a term at its floor or a rank-deficient direction
         // counts 0), docs/fit.md.
         const Matrix sigma_ref = ref.fit.ok ? ref.sigma : Matrix(wh.inverse() * wh.inverse().transpose());
-        const Vector e = wh * log_score_residual(c.avar, model_avar(layout, f.lm.p, c, nullptr), sigma_ref);
-        const auto [j, dof] = j_test(e, wh * d, wh * sigma_ref * wh.transpose(), fixed);
+        const auto [j, dof] = j_of(layout, c, f.lm.p, sigma_ref, wh);
         cand.converged = f.lm.converged;
         cand.objective = f.lm.cost;
         cand.j_statistic = j;
@@ -693,10 +699,8 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
   const Vector model = model_avar(layout, lm.p, c, &d);
   const Bounds bounds = bounds_for(layout, c);
   const auto fixed = at_floor(layout, lm.p, bounds);
-  const Matrix s_white = fin.whiten * fin.sigma * fin.whiten.transpose();
   {
-    const Vector e = fin.whiten * log_score_residual(c.avar, model, fin.sigma);
-    const auto [j, dof] = j_test(e, fin.whiten * d, s_white, fixed);
+    const auto [j, dof] = j_of(layout, c, lm.p, fin.sigma, fin.whiten);
     result.j_statistic = j;
     result.dof = dof;
     result.j_p_value = chi2_upper(j, dof);
