@@ -143,6 +143,7 @@ int main(int argc, char** argv) {
   register_case("oadev_octave", Estimator::oadev, "octave", {1'000'000, 10'000'000});
   register_case("oadev_perdecade10", Estimator::oadev, "perdecade:10", {10'000'000});
   register_case("oadev_all", Estimator::oadev, "all", {100'000});
+  register_case("ohdev_all", Estimator::ohdev, "all", {100'000});
   register_case("ohdev_octave", Estimator::ohdev, "octave", {1'000'000, 10'000'000});
   register_case("mdev_octave", Estimator::mdev, "octave", {1'000'000, 10'000'000});
   register_case("hdev_octave", Estimator::hdev, "octave", {1'000'000, 10'000'000});
@@ -154,10 +155,13 @@ int main(int argc, char** argv) {
           ->Arg(10'000'000)->Unit(benchmark::kMillisecond)->UseRealTime();
     }
   }
-  // oadev over every factor on 1e6 samples: 2.5e11 terms (AllanTools: ~800 s). Opt-in:
-  // --benchmark_filter=all_1e6
-  benchmark::RegisterBenchmark("oadev_all_1e6_2threads", BM_engine, Estimator::oadev, "all", 2u)
-      ->Arg(1'000'000)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+  // Every factor of 1e6 samples: 2.5e11 second-difference terms (AllanTools: ~800 s), mostly
+  // through the FFT correlations (src/core/correlation_sums.hpp).
+  for (const Estimator e : {Estimator::oadev, Estimator::ohdev}) {
+    const std::string name = std::string(imunoise::estimator_name(e)) + "_all_1e6_2threads";
+    benchmark::RegisterBenchmark(name.c_str(), BM_engine, e, "all", 2u)
+        ->Arg(1'000'000)->Unit(benchmark::kSecond)->UseRealTime()->Iterations(1);
+  }
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

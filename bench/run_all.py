@@ -273,7 +273,7 @@ GBENCH_PROGRAMS = [
              Rule(r"_no_ci(/|$)", r"_(with_ci|no_ci)(?=/|$)")],
             quick_filter=r"^(oadev|ohdev|mdev|hdev)_octave_(1thread|2thread|naive)/1000000/"
                          r"|^oadev_all_(1thread|2thread|naive)/",
-            full_filter=r"-all_1e6"),  # oadev over every factor of 1e6 (~40 s) is opt-in there too
+            full_filter=r""),
     Program("bench_total", [Rule(r"^naive/", r"^(fast|naive)/")],
             quick_filter=r"_1k|theo1_4k|totdev_4k"),
     Program("bench_text_reader", [Rule(r"^fread_only")],
@@ -331,6 +331,24 @@ def bench_large_file(ctx):
         entry(f"dev_oadev_octave_default/{n}", with_ci, f"dev_oadev_octave_no_ci/{n}", no_ci,
               repetitions=len(rows), peak_rss_mb=statistics.median(float(r[3]) for r in rows)),
         entry(f"dev_oadev_octave_no_ci/{n}", no_ci, repetitions=len(rows))]
+    return result
+
+
+def bench_all_taus(ctx):
+    n = "200000" if ctx.quick else "1000000"
+    out, result = run_script(["bash", "bench/bench_all_taus.sh", n, "3"], ctx, env={"IMUNOISE_CLI": ctx.cli})
+    if out is None:
+        return result
+    rows = [r for r in table_rows(out) if r[1].isdigit()]
+    result["benchmarks"] = []
+    for estimator in ("oadev", "ohdev"):
+        mine = [r for r in rows if r[0] == estimator]
+        with_ci = statistics.median(float(r[2]) for r in mine)
+        no_ci = statistics.median(float(r[4]) for r in mine)
+        result["benchmarks"] += [
+            entry(f"dev_{estimator}_all_taus_default/{n}", with_ci, f"dev_{estimator}_all_taus_no_ci/{n}", no_ci,
+                  repetitions=len(mine), peak_rss_mb=statistics.median(float(r[3]) for r in mine)),
+            entry(f"dev_{estimator}_all_taus_no_ci/{n}", no_ci, repetitions=len(mine))]
     return result
 
 
@@ -407,7 +425,7 @@ def bench_gmwm(ctx):
     return result
 
 
-SCRIPTS = [("bench_large_file.sh", bench_large_file), ("bench_fleet.sh", bench_fleet),
+SCRIPTS = [("bench_large_file.sh", bench_large_file), ("bench_all_taus.sh", bench_all_taus), ("bench_fleet.sh", bench_fleet),
            ("bench_gmwm.sh", bench_gmwm),
            ("bench_vs_numpy.py", bench_vs_numpy), ("bench_vs_allantools.py", bench_vs_allantools)]
 

@@ -11,7 +11,7 @@ packages=(
   build-essential cmake ninja-build pkg-config
   libgtest-dev libgmock-dev libbenchmark-dev
   libfast-float-dev libcli11-dev libfmt-dev nlohmann-json3-dev
-  libboost-dev libeigen3-dev libyaml-cpp-dev
+  libboost-dev libeigen3-dev libyaml-cpp-dev libfftw3-dev
   clang libclang-rt-14-dev
   python3-dev python3-numpy python3-pytest pybind11-dev python3-setuptools python3-venv python3-wheel python3-pip
   gnuplot-nox chromium fonts-dejavu-core

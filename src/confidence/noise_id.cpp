@@ -8,6 +8,7 @@
 
 #include "imunoise/confidence/edf.hpp"
 #include "imunoise/error.hpp"
+#include "../core/correlation_sums.hpp"
 #include "../core/kernels.hpp"   // the deviation engine's vector kernels
 #include "../core/parallel.hpp"  // the library's fork-join helper
 #include "../core/prefaulted.hpp"
@@ -342,6 +343,91 @@ double rn_ratio_sampled(std::span<const double> phase, std::size_t m, std::size_
   return static_cast<double>(modified / allan);
 }
 
+namespace {
+
+// rn_ratio_sampled's stride at m: the largest power of two dividing m that is at most m/64.
+std::size_t sampling_stride(std::size_t m) {
+  std::size_t q = m & (~m + 1);
+  while (q > m / 64) q /= 2;
+  return q;
+}
+
+// Whether B1 may call for R(n) at m, and rn_ratio_sampled would then read every start.
+bool reads_every_start(std::size_t n_phase, std::size_t m) {
+  const std::size_t points = decimated_count(n_phase, m);
+  return m > 0 && n_phase >= 3 * m && points >= kMinB1Averages + 1 && points < kMinLag1AcfPoints &&
+         sampling_stride(m) < 64;
+}
+
+// Below this many second differences read in all, rn_ratio at each factor costs less than the
+// transforms (1e6 samples: about a second for both sums of every factor on this VM).
+constexpr std::size_t kRnBatchTerms = std::size_t{1} << 31;
+
+}  // namespace
+
+std::vector<double> rn_ratios_for_grid(std::span<const double> phase, std::span<const std::size_t> factors,
+                                       unsigned threads) {
+  const std::size_t n = phase.size();
+  std::vector<std::size_t> wanted;
+  std::size_t terms = 0;
+  for (const std::size_t m : factors) {
+    if (!reads_every_start(n, m)) continue;
+    wanted.push_back(m);
+    terms += n - 2 * m;
+  }
+  if (terms < kRnBatchTerms) return {};
+  std::sort(wanted.begin(), wanted.end());
+  wanted.erase(std::unique(wanted.begin(), wanted.end()), wanted.end());
+  const std::vector<double> by_wanted = rn_ratios(phase, wanted, threads);
+  std::vector<double> result(factors.size(), kNaN);
+  for (std::size_t t = 0; t < factors.size(); ++t) {
+    const auto it = std::lower_bound(wanted.begin(), wanted.end(), factors[t]);
+    if (it != wanted.end() && *it == factors[t]) result[t] = by_wanted[static_cast<std::size_t>(it - wanted.begin())];
+  }
+  return result;
+}
+
+std::vector<double> rn_ratios(std::span<const double> phase, std::span<const std::size_t> wanted, unsigned threads) {
+  const std::size_t n = phase.size();
+  std::vector<double> by_wanted(wanted.size(), kNaN);
+  std::vector<std::size_t> valid;  // the factors with 3m <= n (others stay NaN)
+  for (const std::size_t m : wanted) {
+    if (m > 0 && 3 * m <= n) valid.push_back(m);
+  }
+  if (valid.size() != wanted.size()) {
+    std::vector<double> partial = rn_ratios(phase, valid, threads);
+    for (std::size_t t = 0, j = 0; t < wanted.size(); ++t) {
+      if (j < valid.size() && wanted[t] == valid[j]) by_wanted[t] = partial[j++];
+    }
+    return by_wanted;
+  }
+  // Allan sums from the phase; modified sums are the third differences at lag m of the prefix
+  // sums S of the phase (a window of m second differences telescopes to S(j+3m) - 3 S(j+2m) +
+  // 3 S(j+m) - S(j)). The prefix is of the phase minus its line (which no window sees), in long
+  // double, then rounded: each S value is off by at most eps |S|.
+  const detail::CorrelationSums allan = detail::correlation_difference_sums(phase, 2, wanted, threads);
+  const std::vector<double> y = detail::detrended_phase(phase, 1);
+  std::vector<double> prefix(n + 1, 0.0);
+  long double running = 0.0L;
+  double prefix_max = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    running += y[i];
+    prefix[i + 1] = static_cast<double>(running);
+    prefix_max = std::max(prefix_max, std::abs(prefix[i + 1]));
+  }
+  const detail::CorrelationSums modified = detail::correlation_difference_sums(
+      prefix, 3, wanted, threads, std::numeric_limits<double>::epsilon() * prefix_max);
+  constexpr double kRnTolerance = 1e-9;
+  for (std::size_t i = 0; i < wanted.size(); ++i) {
+    if (!(allan.relative_bound[i] <= kRnTolerance && modified.relative_bound[i] <= kRnTolerance)) continue;
+    const double m = static_cast<double>(wanted[i]);
+    const double count = static_cast<double>(n - 2 * wanted[i]);
+    const double windows = static_cast<double>(n - 3 * wanted[i] + 1);
+    by_wanted[i] = (modified.sum_sq[i] / (m * m) / windows) / (allan.sum_sq[i] / count);
+  }
+  return by_wanted;
+}
+
 double rn_expected(int alpha, std::size_t m) {
   if (m == 0 || alpha < -2 || alpha > 2) return kNaN;
   const double F = static_cast<double>(m);
@@ -349,6 +435,11 @@ double rn_expected(int alpha, std::size_t m) {
 }
 
 NoiseId try_identify_noise(std::span<const double> phase, std::size_t m, Estimator estimator) {
+  return try_identify_noise(phase, m, estimator, kNaN);
+}
+
+NoiseId try_identify_noise(std::span<const double> phase, std::size_t m, Estimator estimator,
+                           double known_rn) {
   if (m == 0) {
     throw InputError("noise identification: the averaging factor m must be at least 1");
   }
@@ -403,7 +494,7 @@ NoiseId try_identify_noise(std::span<const double> phase, std::size_t m, Estimat
       return result;
     }
     // White or flicker PM: R(n) decides (the boundary is the geometric mean).
-    const double rn = rn_ratio_sampled(phase, m);
+    const double rn = std::isnan(known_rn) ? rn_ratio_sampled(phase, m) : known_rn;
     result.method = NoiseIdMethod::b1_rn_ratio;
     result.statistic = rn;
     const double white = rn_expected(2, m);

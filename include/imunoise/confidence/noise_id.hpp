@@ -30,6 +30,7 @@
 #include <cstddef>
 #include <limits>
 #include <span>
+#include <vector>
 #include <string>
 #include <string_view>
 
@@ -77,6 +78,23 @@ NoiseId identify_noise(std::span<const double> phase, std::size_t m, Estimator e
 /// As identify_noise, but too few samples (or non-finite data) is reported in the result
 /// (method none, message set) instead of thrown. Still throws InputError for m = 0.
 NoiseId try_identify_noise(std::span<const double> phase, std::size_t m, Estimator estimator);
+
+/// try_identify_noise with R(n) at m already measured (rn_ratios_for_grid); NaN: measured here.
+NoiseId try_identify_noise(std::span<const double> phase, std::size_t m, Estimator estimator,
+                           double known_rn);
+
+/// R(n) for a dense grid of factors on a long record, all at once from sums through FFT
+/// correlations (src/core/correlation_sums.hpp), where measuring it at each factor (the whole
+/// record per factor) would cost more: indexed like `factors`, NaN where B1 cannot call for it,
+/// where rn_ratio_sampled samples anyway, or where the sums' rounding bound exceeds 1e-9 relative
+/// (a ratio that only chooses between two noise types an octave apart). Empty when not worth it.
+std::vector<double> rn_ratios_for_grid(std::span<const double> phase, std::span<const std::size_t> factors,
+                                       unsigned threads);
+
+/// R(n) at each of `factors` from the correlation sums, as rn_ratios_for_grid but for every
+/// factor with 3m <= N (NaN: the rounding bound exceeds 1e-9 relative, or 3m > N).
+std::vector<double> rn_ratios(std::span<const double> phase, std::span<const std::size_t> factors,
+                              unsigned threads);
 
 /// True when averaging factor m leaves enough decimated points of n_phase for some method
 /// (the B1 ratio needs kMinB1Averages + 1); try_identify_noise reports too few otherwise.
