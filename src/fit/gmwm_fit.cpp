@@ -421,8 +421,9 @@ Weighted iterate_weights(const Layout& layout, const GmwmCurve& c, const Matrix&
   if (w.fit.ok) visited.push_back(w.fit.lm);
   double last_move = 0.0;
   for (int pass = 0; pass < passes && w.fit.ok; ++pass) {
-    w.sigma = model_covariance(layout, w.fit.lm.p, c);
-    w.whiten = whitener_of(w.sigma, c);
+    OwnWeight own = at_own_weight(layout, c, w.fit.lm.p);
+    w.sigma = std::move(own.sigma);
+    w.whiten = std::move(own.whiten);
     const Vector warm = w.fit.lm.p;
     // From the previous optimum and from the starts (the weight changed).
     ModelFit next = fit_model(layout, c, w.whiten, &warm);
