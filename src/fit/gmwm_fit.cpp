@@ -388,6 +388,16 @@ LmResult local_fixed_point(const Layout& layout, const GmwmCurve& c, LmResult lm
 LmResult settle_cycle(const Layout& layout, const GmwmCurve& c, const std::vector<LmResult>& visited, LmResult last) {
   constexpr int kLocalPasses = 10;
   double best = own_j(layout, c, last.p, at_own_weight(layout, c, last.p));
+  // A fixed point counts only if its last refit converged (three-AR1 record 74: one that did
+  // not had the least J, and the whole fit was then reported as not converged, every term not
+  // identified). And J counts a term at its floor as fixed (one degree of freedom fewer), so the
+  // J of a description with more terms at their floors is not comparable to last's.
+  const Bounds bounds = bounds_for(layout, c);
+  auto floors = [&](const Vector& p) {
+    const auto flags = at_floor(layout, p, bounds);
+    return std::count(flags.begin(), flags.end(), true);
+  };
+  const auto last_floors = floors(last.p);
   std::vector<Vector> done;
   for (const LmResult& v : visited) {
     // Optima within a factor 1.6 in every parameter reach the same fixed point: polished once.
@@ -396,6 +406,7 @@ LmResult settle_cycle(const Layout& layout, const GmwmCurve& c, const std::vecto
     }
     done.push_back(v.p);
     LmResult fixed = local_fixed_point(layout, c, v, kLocalPasses);
+    if (!fixed.converged || floors(fixed.p) > last_floors) continue;
     const OwnWeight own = at_own_weight(layout, c, fixed.p);
     const ModelFit check = fit_model(layout, c, own.whiten, &fixed.p);
     if (check.ok && check.lm.cost < own.cost - 1e-3 * std::max(1.0, own.cost)) continue;
