@@ -291,10 +291,20 @@ double rn_ratio(std::span<const double> phase, std::size_t m) {
   return static_cast<double>(modified / allan);
 }
 
-double rn_ratio_sampled(std::span<const double> phase, std::size_t m, std::size_t min_stride) {
-  if (m == 0 || phase.size() < 3 * m) return kNaN;
+namespace {
+
+// rn_ratio_sampled's stride at m: the largest power of two dividing m that is at most m/64.
+std::size_t sampling_stride(std::size_t m) {
   std::size_t q = m & (~m + 1);  // lowest set bit of m
   while (q > m / 64) q /= 2;
+  return q;
+}
+
+}  // namespace
+
+double rn_ratio_sampled(std::span<const double> phase, std::size_t m, std::size_t min_stride) {
+  if (m == 0 || phase.size() < 3 * m) return kNaN;
+  const std::size_t q = sampling_stride(m);
   if (q < std::max<std::size_t>(min_stride, 4)) return rn_ratio(phase, m);
   const std::size_t n = phase.size();
   const std::size_t blocks = n / q;  // whole blocks of q samples
@@ -344,13 +354,6 @@ double rn_ratio_sampled(std::span<const double> phase, std::size_t m, std::size_
 }
 
 namespace {
-
-// rn_ratio_sampled's stride at m: the largest power of two dividing m that is at most m/64.
-std::size_t sampling_stride(std::size_t m) {
-  std::size_t q = m & (~m + 1);
-  while (q > m / 64) q /= 2;
-  return q;
-}
 
 // Whether B1 may call for R(n) at m, and rn_ratio_sampled would then read every start.
 bool reads_every_start(std::size_t n_phase, std::size_t m) {

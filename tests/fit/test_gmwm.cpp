@@ -474,6 +474,17 @@ void print_coverage(const Coverage& c) {
   if (c.selected_true > 0) std::printf("  auto selected N+K+GM+GM in %d/%d\n", c.selected_true, c.runs);
 }
 
+/// One 3 h record of the studies' generator (N kN, K kK, the given AR1 terms; seed as in the
+/// studies) fitted by gmwm with `terms`.
+GmwmResult fit_3h_record(const std::vector<Ar1Spec>& ar1, std::uint64_t seed, const char* terms) {
+  const auto n = static_cast<std::size_t>(3.0 * 3600.0 / kTau0);
+  const auto rate = gmwm_test::make_rate(n, kTau0, kN, kK, ar1, seed);
+  const auto c = gmwm_test::octave_curve(rate, kTau0);
+  GmwmOptions o;
+  parse_gmwm_terms(terms, o);
+  return fit_gmwm(c.m, c.avar, c.n_phase, kTau0, o);
+}
+
 // Record 27 of the 3 h study (seed 5027): the three weight passes alternate between K with the
 // 20 s term (objectives 16.5, 15.6) and K at its floor with the slow term carrying the random walk
 // (95.4). The last iterate used to be reported: objective 422 at its own weight, K not identified,
@@ -481,12 +492,7 @@ void print_coverage(const Coverage& c) {
 // weight iteration that cycles"); the fit must end there, or at another proper fixed point with
 // K identified and the truth inside its interval.
 TEST(GmwmFit, ACyclingWeightIterationEndsAtAFixedPoint) {
-  const auto n = static_cast<std::size_t>(3.0 * 3600.0 / kTau0);
-  const auto rate = gmwm_test::make_rate(n, kTau0, kN, kK, kAr1, 5027);
-  const auto c = gmwm_test::octave_curve(rate, kTau0);
-  GmwmOptions o;
-  parse_gmwm_terms("N,K,GM,GM", o);
-  const GmwmResult g = fit_gmwm(c.m, c.avar, c.n_phase, kTau0, o);
+  const GmwmResult g = fit_3h_record(kAr1, 5027, "N,K,GM,GM");
   ASSERT_EQ(g.terms.size(), 4U);
   const Coefficient& k = g.terms[1].magnitude;
   EXPECT_TRUE(k.identified) << k.note;
@@ -502,13 +508,7 @@ TEST(GmwmFit, ACyclingWeightIterationEndsAtAFixedPoint) {
 // reported as not converged, N, K and all three GM terms not identified. The settling keeps only
 // converged fixed points: N identified, the truth inside its interval.
 TEST(GmwmFit, SettlingKeepsOnlyConvergedFixedPoints) {
-  const auto n = static_cast<std::size_t>(3.0 * 3600.0 / kTau0);
-  const std::vector<gmwm_test::Ar1Spec> ar1{{3e-4, 0.5}, {2e-4, 5.0}, {1e-4, 50.0}};
-  const auto rate = gmwm_test::make_rate(n, kTau0, kN, kK, ar1, 8074);
-  const auto c = gmwm_test::octave_curve(rate, kTau0);
-  GmwmOptions o;
-  parse_gmwm_terms("N,K,GM,GM,GM", o);
-  const GmwmResult g = fit_gmwm(c.m, c.avar, c.n_phase, kTau0, o);
+  const GmwmResult g = fit_3h_record({{3e-4, 0.5}, {2e-4, 5.0}, {1e-4, 50.0}}, 8074, "N,K,GM,GM,GM");
   ASSERT_EQ(g.terms.size(), 5U);
   const Coefficient& white = g.terms[0].magnitude;
   EXPECT_TRUE(white.identified) << white.note;
