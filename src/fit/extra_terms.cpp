@@ -15,6 +15,7 @@
 #include "imunoise/confidence/interval.hpp"
 #include "imunoise/sim/gauss_markov.hpp"
 #include "least_squares.hpp"
+#include "log_score.hpp"
 
 namespace imunoise::fit {
 
@@ -327,6 +328,13 @@ Matrix with_scatter(Matrix sigma, const Vector& model, double scatter2) {
 /// chi^2 of residual r under covariance sigma (full Cholesky whitening).
 double chi2_under(const Vector& r, const Matrix& sigma) { return (whitener(sigma, true) * r).squaredNorm(); }
 
+/// chi^2 of the curve y against the model with each tau's residual its log score (log_score.hpp),
+/// as the power-law fit's mismatch test and FitSummary::chi2.
+double log_score_chi2(const Vector& y, const Vector& model, const Matrix& sigma) {
+  return chi2_under(log_score_residual(std::span<const double>(y.data(), static_cast<std::size_t>(y.size())), model, sigma),
+                    sigma);
+}
+
 /// The column contributing most to the model at tau_s (-1: none).
 int dominant_column(const Vector& theta, const Params& p, double tau_s) {
   int best = -1;
@@ -473,9 +481,9 @@ class ExtraFitter {
     // the sampling noise rejects this model, a relative scatter s^2 with chi^2 = dof is
     // estimated (Paule-Mandel) and the fit redone with it, to a fixed point.
     if (mismatch_ && dof_of() > 0) {
-      const Vector r = y - model_vector(curve_, c.fit.theta, c.fit.p);
       const double dof = static_cast<double>(dof_of());
-      if (chi2_under(r, covariance(c, false)) <= chi2_quantile(1.0 - alpha_, dof)) {
+      if (log_score_chi2(y, model_vector(curve_, c.fit.theta, c.fit.p), covariance(c, false)) <=
+          chi2_quantile(1.0 - alpha_, dof)) {
         if (c.scatter2 > 0.0) {  // the candidate describes the curve: exact weights
           c.scatter2 = 0.0;
           cap = false;
@@ -509,8 +517,7 @@ class ExtraFitter {
     const Weighted w(curve_, c.sigma);
     c.fit = best_fit(w, grids_, c.cols, c.fit.p, {}, -1, true);
     {
-      const Vector r = y - model_vector(curve_, c.fit.theta, c.fit.p);
-      c.chi2_sampling = c.scatter2 > 0.0 ? chi2_under(r, covariance(c, false)) : c.fit.rss;
+      c.chi2_sampling = log_score_chi2(y, model_vector(curve_, c.fit.theta, c.fit.p), covariance(c, false));
       c.dof = dof_of();
     }
     for (int e : extras) {

@@ -19,6 +19,7 @@
 #include "imunoise/error.hpp"
 #include "extra_terms_fit.hpp"
 #include "least_squares.hpp"
+#include "log_score.hpp"
 
 namespace imunoise::fit {
 namespace {
@@ -27,6 +28,7 @@ constexpr double kFloor = 2.0 * std::numbers::ln2 / std::numbers::pi;  // B^2 ->
 
 using detail::Matrix;
 using detail::nnls;
+using detail::log_score_residual;
 using detail::subset_ls;
 using detail::to_matrix;
 using detail::Vector;
@@ -260,6 +262,14 @@ void add_excluded_residuals(FitResult& result, const Curve& full,
 /// chi^2 of residual r under covariance sigma (full Cholesky whitening).
 double chi2_of(const Vector& r, const Matrix& sigma) {
   return (whitener(sigma, true) * r).squaredNorm();
+}
+
+/// chi^2 of the measured curve y against the model under covariance sigma, each tau's residual
+/// its log score (log_score.hpp): honest where the long taus have few degrees of freedom (exact
+/// white + random-walk records: docs/fit.md).
+double log_score_chi2(const Vector& y, const Vector& model, const Matrix& sigma) {
+  return chi2_of(log_score_residual(std::span<const double>(y.data(), static_cast<std::size_t>(y.size())), model, sigma),
+                 sigma);
 }
 
 void fill_common(FitResult& result, const Curve& curve, const std::vector<double>& sd) {
@@ -969,8 +979,7 @@ FitResult fit_allan_body(std::span<const DevPoint> oadev_points, std::size_t n_p
     // and refit with it (its weights depend on the model, so iterate to a fixed point).
     if (options.model_mismatch && k > free_set.size()) {
       const double dof = static_cast<double>(k - free_set.size());
-      const Vector r0 = y - g * theta.cwiseMax(0.0);
-      if (chi2_of(r0, sigma) > chi2_quantile(1.0 - options.mismatch_test_alpha, dof)) {
+      if (log_score_chi2(y, g * theta.cwiseMax(0.0), sigma) > chi2_quantile(1.0 - options.mismatch_test_alpha, dof)) {
         cap_to_data = true;
         for (int outer = 0; outer < 8; ++outer) {
           const double next = solve_scatter(theta, dof);
@@ -1128,7 +1137,7 @@ FitResult fit_allan_body(std::span<const DevPoint> oadev_points, std::size_t n_p
   scatter2 = 0.0;
   const Matrix sigma_sampling = model_sigma(theta);
   scatter2 = scatter_fitted;
-  summary.chi2 = chi2_of(r, sigma_sampling);
+  summary.chi2 = log_score_chi2(y, g * theta.cwiseMax(0.0), sigma_sampling);
   summary.dof = k > free_set.size() ? k - free_set.size() : 0;
   summary.chi2_dof = summary.dof > 0 ? summary.chi2 / static_cast<double>(summary.dof) : 0.0;
   if (!std::isfinite(summary.chi2)) summary.chi2 = summary.chi2_dof = 0.0;

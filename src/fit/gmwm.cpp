@@ -480,7 +480,7 @@ LmResult levenberg_marquardt(const Layout& layout, const GmwmCurve& c, const Mat
   }
   out.p = p;
   out.cost = cost;
-  out.iterations = it + 1;
+  out.iterations = std::min(it + 1, max_iterations);
   out.converged = converged;
   return out;
 }

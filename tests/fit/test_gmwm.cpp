@@ -237,17 +237,19 @@ TEST(GmwmFit, RecoversTheModelFromItsExactCurve) {
 }
 
 // A fit stopped by its iteration limit reports no term as identified (the last iterate is no
-// estimate), says why and how to fix it; with the default limit the same curve converges.
+// estimate), says why and how to fix it; with the default limit the same curve converges. A
+// record of the 3 h study (seed 5101) whose fit, at one iteration per start (ten for the best
+// start with its continuations), stops at the limit: most records converge even so, their last
+// weight pass starting at the previous pass's optimum.
 TEST(GmwmFit, NoConvergenceIdentifiesNothing) {
   const double tau0 = 0.01;
-  const std::size_t n_phase = 360001;  // 1 h at 100 Hz
-  std::vector<std::size_t> ms;
-  for (std::size_t m = 1; 2 * m < n_phase; m *= 2) ms.push_back(m);
-  const auto avar = exact_avar(ms, tau0, 1.7e-4, 1e-5, {{2e-4, 3.7}, {1e-4, 43.0}});
+  const auto rate = gmwm_test::make_rate(static_cast<std::size_t>(3.0 * 3600.0 / tau0), tau0, 1.7e-4, 1e-5,
+                                         {{2e-4, 2.0}, {1e-4, 20.0}}, 5101);
+  const auto c = gmwm_test::octave_curve(rate, tau0);
   GmwmOptions o;
   parse_gmwm_terms("N,K,GM,GM", o);
   o.max_iterations = 1;
-  const GmwmResult r = fit_gmwm(ms, avar, n_phase, tau0, o);
+  const GmwmResult r = fit_gmwm(c.m, c.avar, c.n_phase, tau0, o);
   ASSERT_EQ(r.status, GmwmStatus::no_convergence) << r.message;
   ASSERT_EQ(r.terms.size(), 4u);
   for (const auto& t : r.terms) {
@@ -258,9 +260,9 @@ TEST(GmwmFit, NoConvergenceIdentifiesNothing) {
   }
   ASSERT_FALSE(r.warnings.empty());
   o.max_iterations = 200;
-  EXPECT_EQ(fit_gmwm(ms, avar, n_phase, tau0, o).status, GmwmStatus::converged);
+  EXPECT_EQ(fit_gmwm(c.m, c.avar, c.n_phase, tau0, o).status, GmwmStatus::converged);
   o.max_iterations = 0;
-  EXPECT_THROW(fit_gmwm(ms, avar, n_phase, tau0, o), InputError);
+  EXPECT_THROW(fit_gmwm(c.m, c.avar, c.n_phase, tau0, o), InputError);
 }
 
 // A Gauss-Markov term whose correlation time is far beyond the record (1e5 s in 1 h) is a random
@@ -616,5 +618,89 @@ TEST(GmwmJTest, HonestOnExactWhitePlusRandomWalk) {
   EXPECT_LE(wls, 5);
 }
 
+// Records 108 and 146 of the 3 h study (seeds 5108, 5146): the best start's LM was still
+// improving along a flat valley at the 200-iteration limit (it needs 431 and 747 iterations
+// from there), so the fit was reported not converged and every term not identified. The best
+// start is continued: both converge, N and K identified with the truth inside their intervals.
+TEST(GmwmFit, AFitAtTheIterationLimitIsContinued) {
+  for (const std::uint64_t seed : {5108U, 5146U}) {
+    const GmwmResult g = fit_3h_record(kAr1, seed, "N,K,GM,GM");
+    ASSERT_EQ(g.status, GmwmStatus::converged) << "seed " << seed << ": " << g.message;
+    ASSERT_EQ(g.terms.size(), 4U);
+    for (const auto& t : g.terms) EXPECT_TRUE(t.magnitude.identified) << "seed " << seed << ": " << t.magnitude.note;
+    const double truth[2] = {kN, kK};
+    for (int q = 0; q < 2; ++q) {
+      const Coefficient& e = g.terms[static_cast<std::size_t>(q)].magnitude;
+      EXPECT_LE(e.ci_low, truth[q]) << "seed " << seed << ", term " << q;
+      EXPECT_GE(e.ci_high, truth[q]) << "seed " << seed << ", term " << q;
+    }
+  }
+}
+
+// The default fit (wls, every default: five power-law terms, the mismatch test at 1e-3, the
+// automatic terms) on the exact model, white + random walk (2 h, 100 Hz, N 1.7e-4,
+// K 1e-4 rad/s units): how often its chi^2 rejects the model at 5 %, 1 % and at the mismatch
+// test's 1e-3 (then the intervals are widened by a scatter the exact model does not have),
+// and how often N's and K's intervals cover the truth.
+struct WlsOnExactModel {
+  int runs = 0, at_5 = 0, at_1 = 0, mismatch = 0, n_covered = 0, k_covered = 0;
+};
+
+WlsOnExactModel wls_on_exact_model(int runs, std::uint64_t seed0) {
+  const auto n = static_cast<std::size_t>(2.0 * 3600.0 / kTau0);
+  WlsOnExactModel out;
+  for (int r = 0; r < runs; ++r) {
+    const auto rate = gmwm_test::make_rate(n, kTau0, 1.7e-4, 1e-4, {}, seed0 + static_cast<std::uint64_t>(r));
+    const auto pts = gmwm_test::octave_points(rate, kTau0);
+    const FitResult w = fit_allan(pts, rate.size() + 1, kTau0, FitOptions{});
+    const boost::math::chi_squared_distribution<double> chi(static_cast<double>(std::max<std::size_t>(1, w.summary.dof)));
+    const double p = boost::math::cdf(boost::math::complement(chi, w.summary.chi2));
+    ++out.runs;
+    out.at_5 += p < 0.05;
+    out.at_1 += p < 0.01;
+    out.mismatch += w.summary.mismatch_scatter > 0.0;
+    const auto& nc = w.coefficients.random_walk;
+    const auto& kc = w.coefficients.rate_random_walk;
+    out.n_covered += nc.ci_low <= 1.7e-4 && 1.7e-4 <= nc.ci_high;
+    out.k_covered += kc.ci_low <= 1e-4 && 1e-4 <= kc.ci_high;
+    if (std::getenv("IMUNOISE_GMWM_VERBOSE")) {
+      std::printf("run %d: chi2/dof %.2f dof %zu p %.4f scatter %.3g N %.5g [%.5g, %.5g] K %.4g [%.4g, %.4g]\n", r,
+                  w.summary.chi2_dof, w.summary.dof, p, w.summary.mismatch_scatter, nc.value, nc.ci_low, nc.ci_high,
+                  kc.value, kc.ci_low, kc.ci_high);
+    }
+  }
+  return out;
+}
+
+// Each count against the binomial bound a correct test exceeds with probability <= 1 % (200
+// records: <= 18 at 5 %, <= 6 at 1 %, <= 2 at 1e-3; coverage >= 183 of 200). Measured
+// 2026-12-07 (seeds 3000-3199): 16, 5, 0; N 191, K 189 covered. With the Gaussian chi^2 the
+// default fit used before (the residual a_hat - a, not its log score): 23, 7 and 1 — the first
+// two over their bounds; on 1,000 records 88, 26, 7 against the log score's 63, 10, 0 (expected
+// 50, 10, 1), the 7 widened by a scatter the exact model does not have (docs/fit.md).
+TEST(WlsChi2Test, HonestOnExactWhitePlusRandomWalk) {
+  const char* env = std::getenv("IMUNOISE_WLS_RUNS");
+  const int runs = env != nullptr ? std::atoi(env) : 200;
+  const WlsOnExactModel w = wls_on_exact_model(runs, 3000);
+  std::printf("wls on exact white + random walk, %d records: chi2 rejects at 5 %% %d, at 1 %% %d, mismatch (1e-3) %d; "
+              "N covered %d, K covered %d\n",
+              w.runs, w.at_5, w.at_1, w.mismatch, w.n_covered, w.k_covered);
+  const auto upper = [&](double p) {
+    const boost::math::binomial_distribution<double> d(runs, p);
+    int x = 0;
+    while (boost::math::cdf(boost::math::complement(d, x)) > 0.01) ++x;
+    return x;
+  };
+  int lower = runs;
+  const boost::math::binomial_distribution<double> cover(runs, 0.95);
+  while (lower > 0 && boost::math::cdf(cover, lower - 1) > 0.01) --lower;
+  EXPECT_LE(w.at_5, upper(0.05));
+  EXPECT_LE(w.at_1, upper(0.01));
+  EXPECT_LE(w.mismatch, upper(1e-3));
+  EXPECT_GE(w.n_covered, lower);
+  EXPECT_GE(w.k_covered, lower);
+}
+
 }  // namespace
 }  // namespace imunoise::fit
+

@@ -133,7 +133,8 @@ struct FitOptions {
   bool exclude_distorted = true;
   std::size_t distortion_max_m = 16;
   /// wls: model mismatch (ols, the paper's unweighted method, is left as it was: its estimate
-  /// does not minimise chi^2, so the test below would reject exact models). When the chi^2 of the fit (full model covariance) exceeds its
+  /// does not minimise chi^2, so the test below would reject exact models). When the chi^2 of the fit (full model covariance,
+  /// each tau's residual its log score: FitSummary::chi2) exceeds its
   /// (1 - mismatch_test_alpha) quantile, the power-law model does not describe the curve to
   /// within its sampling noise (a real sensor: temperature, a sinusoid, a non-1/f floor). A
   /// relative scatter s of the curve about the model is then estimated (Paule-Mandel: chi^2 =
@@ -199,7 +200,10 @@ struct FitSummary {
   Termination termination = Termination::degenerate_input;
   int iterations = 0;
   std::size_t points_used = 0;
-  double chi2 = 0.0;          ///< r' Sigma^-1 r with the model covariance (correlations included)
+  /// r' Sigma^-1 r with the model covariance (correlations included), each tau's r the log score
+  /// of its estimate (log(a_hat / a) against its chi-square law, times its sd; a_hat - a for
+  /// many degrees of freedom): honest where the long taus have few (docs/fit.md)
+  double chi2 = 0.0;
   std::size_t dof = 0;        ///< points_used - free parameters
   double chi2_dof = 0.0;      ///< chi2 / dof (0 when dof = 0)
   /// Relative scatter of the curve about the model estimated from the misfit (model_mismatch;

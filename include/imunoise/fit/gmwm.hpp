@@ -129,8 +129,9 @@ struct GmwmOptions {
   double level = 0.95;
   /// Re-computations of W at the fitted model (the first W is at the start model).
   int weight_iterations = 3;
-  /// Levenberg-Marquardt iterations per start (>= 1). A fit that reaches it has status
-  /// no_convergence and none of its terms is identified (the last iterate is no estimate).
+  /// Levenberg-Marquardt iterations per start (>= 1); the best start of a fit, should it stop
+  /// at the limit, is continued up to nine more times as long. A fit that still reaches it has
+  /// status no_convergence and none of its terms is identified (the last iterate is no estimate).
   int max_iterations = 200;
   /// W = Sigma^-1 (the efficient weight, true, default) or diag(Sigma)^-1 (false). Measured
   /// (docs/fit.md): with the full inverse the GM terms are estimated far better (1 h records:
