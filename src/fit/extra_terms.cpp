@@ -328,13 +328,6 @@ Matrix with_scatter(Matrix sigma, const Vector& model, double scatter2) {
 /// chi^2 of residual r under covariance sigma (full Cholesky whitening).
 double chi2_under(const Vector& r, const Matrix& sigma) { return (whitener(sigma, true) * r).squaredNorm(); }
 
-/// chi^2 of the curve y against the model with each tau's residual its log score (log_score.hpp),
-/// as the power-law fit's mismatch test and FitSummary::chi2.
-double log_score_chi2(const Vector& y, const Vector& model, const Matrix& sigma) {
-  return chi2_under(log_score_residual(std::span<const double>(y.data(), static_cast<std::size_t>(y.size())), model, sigma),
-                    sigma);
-}
-
 /// The column contributing most to the model at tau_s (-1: none).
 int dominant_column(const Vector& theta, const Params& p, double tau_s) {
   int best = -1;

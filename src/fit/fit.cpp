@@ -28,7 +28,7 @@ constexpr double kFloor = 2.0 * std::numbers::ln2 / std::numbers::pi;  // B^2 ->
 
 using detail::Matrix;
 using detail::nnls;
-using detail::log_score_residual;
+using detail::log_score_chi2;
 using detail::subset_ls;
 using detail::to_matrix;
 using detail::Vector;
@@ -262,14 +262,6 @@ void add_excluded_residuals(FitResult& result, const Curve& full,
 /// chi^2 of residual r under covariance sigma (full Cholesky whitening).
 double chi2_of(const Vector& r, const Matrix& sigma) {
   return (whitener(sigma, true) * r).squaredNorm();
-}
-
-/// chi^2 of the measured curve y against the model under covariance sigma, each tau's residual
-/// its log score (log_score.hpp): honest where the long taus have few degrees of freedom (exact
-/// white + random-walk records: docs/fit.md).
-double log_score_chi2(const Vector& y, const Vector& model, const Matrix& sigma) {
-  return chi2_of(log_score_residual(std::span<const double>(y.data(), static_cast<std::size_t>(y.size())), model, sigma),
-                 sigma);
 }
 
 void fill_common(FitResult& result, const Curve& curve, const std::vector<double>& sd) {

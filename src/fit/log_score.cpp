@@ -1,6 +1,8 @@
 // The log score of an Allan variance estimate (log_score.hpp).
 #include "log_score.hpp"
 
+#include "least_squares.hpp"
+
 #include <cmath>
 #include <cstddef>
 
@@ -26,6 +28,12 @@ Eigen::VectorXd log_score_residual(std::span<const double> avar_hat, const Eigen
     r(i) = score * sd;
   }
   return r;
+}
+
+double log_score_chi2(const Eigen::VectorXd& avar_hat, const Eigen::VectorXd& model, const Eigen::MatrixXd& sigma) {
+  const auto r = log_score_residual(
+      std::span<const double>(avar_hat.data(), static_cast<std::size_t>(avar_hat.size())), model, sigma);
+  return (whitener(sigma, true) * r).squaredNorm();
 }
 
 }  // namespace imunoise::fit::detail

@@ -18,4 +18,8 @@ namespace imunoise::fit::detail {
 Eigen::VectorXd log_score_residual(std::span<const double> avar_hat, const Eigen::VectorXd& model,
                                    const Eigen::MatrixXd& sigma);
 
+/// chi^2 of the measured curve against the model under the covariance sigma (full whitening),
+/// each tau's residual its log score: the wls fit's mismatch test and FitSummary::chi2.
+double log_score_chi2(const Eigen::VectorXd& avar_hat, const Eigen::VectorXd& model, const Eigen::MatrixXd& sigma);
+
 }  // namespace imunoise::fit::detail
