@@ -81,6 +81,11 @@ std::pair<double, double> profile_interval(const Layout& layout, const GmwmCurve
                                            const Bounds& bounds, const Vector& p, double cost, Eigen::Index j,
                                            double rise, double step);
 
+/// Sets p's magnitudes (log variances) to the weighted NNLS solution at p's shapes, a term
+/// NNLS drops to a small value above its floor; returns the NNLS cost.
+double magnitudes_by_nnls(const Layout& layout, const GmwmCurve& c, const Matrix& whiten, const Bounds& bounds,
+                          Vector& p);
+
 /// A fitted model with a given weight: the best of several starts.
 struct ModelFit {
   Layout layout;

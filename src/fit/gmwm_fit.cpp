@@ -72,11 +72,32 @@ LmResult continue_to_convergence(const Layout& layout, const GmwmCurve& c, const
 
 }  // namespace
 
+double magnitudes_by_nnls(const Layout& layout, const GmwmCurve& c, const Matrix& whiten, const Bounds& bounds,
+                          Vector& p) {
+  const auto k = static_cast<Eigen::Index>(c.tau_s.size());
+  const Vector b = whiten * Eigen::Map<const Vector>(c.avar.data(), k);
+  // The model is linear in the variances: each term's unit column evaluates the whole model
+  // with the other terms at a negligible magnitude.
+  Matrix g(k, static_cast<Eigen::Index>(layout.terms.size()));
+  for (std::size_t t = 0; t < layout.terms.size(); ++t) {
+    Vector unit = p;
+    for (std::size_t u = 0; u < layout.terms.size(); ++u) unit(layout.magnitude[u]) = u == t ? 0.0 : -700.0;
+    g.col(static_cast<Eigen::Index>(t)) = model_avar(layout, unit, c, nullptr);
+  }
+  const Vector x = nnls_lh(whiten * g, b);
+  for (std::size_t t = 0; t < layout.terms.size(); ++t) {
+    const Eigen::Index j = layout.magnitude[t];
+    // A term NNLS drops starts small but above its floor: at the floor the log-variance has no
+    // gradient, and LM could never bring the term back.
+    const double small = bounds.hi(j) - 2.0 - 12.0;  // 6e-6 of the upper bound
+    const double v = x(static_cast<Eigen::Index>(t));
+    p(j) = std::clamp(v > 0.0 ? std::log(v) : small, bounds.lo(j), bounds.hi(j));
+  }
+  return (whiten * g * x - b).squaredNorm();
+}
+
 ModelFit fit_model(const Layout& layout, const GmwmCurve& c, const Matrix& whiten, const Vector* warm) {
   const Bounds bounds = bounds_for(layout, c);
-  const auto k = static_cast<Eigen::Index>(c.tau_s.size());
-  const Vector y = Eigen::Map<const Vector>(c.avar.data(), k);
-  const Vector b = whiten * y;
   std::vector<std::size_t> gm, sin;
   for (std::size_t t = 0; t < layout.terms.size(); ++t) {
     if (layout.terms[t] == GmwmTerm::GM) gm.push_back(t);
@@ -130,11 +151,9 @@ ModelFit fit_model(const Layout& layout, const GmwmCurve& c, const Matrix& white
     Vector p;
   };
   std::vector<Start> starts;
-  Matrix g(k, static_cast<Eigen::Index>(layout.terms.size()));
   for (const auto& tcs : tc_sets) {
     for (double f0 : f_values) {
-      // Every shape first: each term's unit column below evaluates the whole model (the other
-      // terms at a negligible magnitude), so no entry of p may be left unset.
+      // Every shape first (magnitudes_by_nnls evaluates the whole model).
       Vector p = Vector::Zero(layout.parameters);
       for (std::size_t t = 0, gi = 0; t < layout.terms.size(); ++t) {
         double shape = 0.0;
@@ -142,19 +161,7 @@ ModelFit fit_model(const Layout& layout, const GmwmCurve& c, const Matrix& white
         if (layout.terms[t] == GmwmTerm::SIN) shape = f0;
         if (layout.shape[t] >= 0) p(layout.shape[t]) = std::clamp(std::log(shape), bounds.lo(layout.shape[t]), bounds.hi(layout.shape[t]));
       }
-      for (std::size_t t = 0; t < layout.terms.size(); ++t) {
-        Vector unit = p;
-        for (std::size_t u = 0; u < layout.terms.size(); ++u) unit(layout.magnitude[u]) = u == t ? 0.0 : -700.0;
-        g.col(static_cast<Eigen::Index>(t)) = model_avar(layout, unit, c, nullptr);
-      }
-      const Vector x = nnls_lh(whiten * g, b);
-      const double cost = (whiten * g * x - b).squaredNorm();
-      for (std::size_t t = 0; t < layout.terms.size(); ++t) {
-        const Eigen::Index j = layout.magnitude[t];
-        const double floor = bounds.hi(j) - 2.0 - 12.0;  // 6e-6 of the upper bound
-        p(j) = std::clamp(x(static_cast<Eigen::Index>(t)) > 0.0 ? std::log(x(static_cast<Eigen::Index>(t))) : floor,
-                          bounds.lo(j), bounds.hi(j));
-      }
+      const double cost = magnitudes_by_nnls(layout, c, whiten, bounds, p);
       starts.push_back({cost, p});
     }
   }

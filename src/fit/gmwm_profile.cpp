@@ -30,6 +30,15 @@ bool same_model(const Layout& layout, const Bounds& bounds, const Vector& p, con
   return true;
 }
 
+/// Whether a magnitude other than parameter j is at (or near) its floor in q.
+bool other_term_at_floor(const Layout& layout, const Bounds& bounds, const Vector& q, Eigen::Index j) {
+  constexpr double kNearFloor = 6.0;  // log-variance units, as at_floor in gmwm_fit.cpp
+  for (const Eigen::Index i : layout.magnitude) {
+    if (i != j && q(i) < bounds.lo(i) + kNearFloor) return true;
+  }
+  return false;
+}
+
 /// The objective with parameter j held at `value` and every other parameter refitted from
 /// `warm` (which it updates: the next point starts where this one ended); +inf where the
 /// refit leaves the model fitted at p (same_model).
@@ -39,10 +48,26 @@ double profiled_cost(const Layout& layout, const GmwmCurve& c, const Matrix& whi
   held.lo(j) = held.hi(j) = value;
   Vector start = warm;
   start(j) = value;
-  const LmResult r = levenberg_marquardt(layout, c, whiten, start, held, c.max_iterations);
-  if (!std::isfinite(r.cost) || !same_model(layout, bounds, p, r.p, j)) return std::numeric_limits<double>::infinity();
-  warm = r.p;
-  return r.cost;
+  LmResult best;
+  best.cost = std::numeric_limits<double>::infinity();
+  auto refit = [&](const Vector& from) {
+    LmResult r = levenberg_marquardt(layout, c, whiten, from, held, c.max_iterations);
+    if (std::isfinite(r.cost) && r.cost < best.cost && same_model(layout, bounds, p, r.p, j)) best = std::move(r);
+  };
+  refit(start);
+  // A term at its floor has no gradient in its log-variance, so a refit from the warm point
+  // can never bring it back; yet with j held away from the optimum that term may be what the
+  // curve needs (K taking over the random walk a slow Gauss-Markov term carried at p). A second
+  // start with every variance re-solved by NNLS at the held shapes lets it.
+  if (other_term_at_floor(layout, bounds, std::isfinite(best.cost) ? best.p : start, j)) {
+    Vector revived = start;
+    magnitudes_by_nnls(layout, c, whiten, bounds, revived);
+    revived(j) = value;
+    refit(revived);
+  }
+  if (!std::isfinite(best.cost)) return std::numeric_limits<double>::infinity();
+  warm = best.p;
+  return best.cost;
 }
 
 /// The end of the interval on one side (direction +1 or -1): march out with doubling steps

@@ -621,6 +621,24 @@ TEST(GmwmJTest, HonestOnExactWhitePlusRandomWalk) {
   EXPECT_LE(wls, 5);
 }
 
+// Record 4 of the three-AR1 study (seed 8004): K runs to its floor and the 50 s term carries the
+// random walk (fitted T_c 1160 s). A profile refit from the optimum could never bring K back (a
+// log-variance at its floor has no gradient), so held at smaller T_c the slow term had to carry
+// the random walk alone, the objective rose fast, and the intervals of the 5 s and 50 s terms'
+// T_c stopped above the truth. With the variances re-solved at each held point K returns and
+// both intervals reach the truth.
+TEST(GmwmFit, AProfileCanBringBackATermAtItsFloor) {
+  const GmwmResult g = fit_3h_record({{3e-4, 0.5}, {2e-4, 5.0}, {1e-4, 50.0}}, 8004, "N,K,GM,GM,GM");
+  ASSERT_EQ(g.terms.size(), 5U);
+  EXPECT_FALSE(g.terms[1].magnitude.identified) << "K is expected at its floor on this record";
+  const double truth_tc_s[2] = {5.0, 50.0};
+  for (int q = 0; q < 2; ++q) {
+    const Coefficient& tc = g.terms[static_cast<std::size_t>(3 + q)].shape;
+    EXPECT_LE(tc.ci_low, truth_tc_s[q]) << "GM" << q + 2 << " T_c " << tc.value << " s";
+    EXPECT_GE(tc.ci_high, truth_tc_s[q]) << "GM" << q + 2 << " T_c " << tc.value << " s";
+  }
+}
+
 // Records 108 and 146 of the 3 h study (seeds 5108, 5146): the best start's LM was still
 // improving along a flat valley at the 200-iteration limit (it needs 431 and 747 iterations
 // from there), so the fit was reported not converged and every term not identified. The best
