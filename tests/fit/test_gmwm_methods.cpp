@@ -167,7 +167,8 @@ TEST(SlowGmwmMethods, TwoAr1ADecadeApart3h) {
 }
 
 // DISABLED (2026-12-06, 100 records, seeds 8000-8099): GM2 T_c covered 85, GM3 sigma 82, GM3 T_c
-// 77 of 100 (band [88, 100]); GM3 T_c mean error +673 %; 2026-12-07 after the settling: 84, 81, 76. Two failure modes (IMUNOISE_GMWM_Z on 30
+// 77 of 100 (band [88, 100]); GM3 T_c mean error +673 %; 2026-12-07 after the settling: 84, 81, 76;
+// after a profile can bring back a floored K: 85, 81, 80. Two failure modes (IMUNOISE_GMWM_Z on 30
 // records): K at its floor and the 50 s term carrying the random walk (T_c 7-70x the truth, the
 // truth below the interval), and a fast spurious GM taking the first slot while the three true
 // terms shift one slot up and K absorbs the slowest. The estimator, not the intervals: not done.
