@@ -325,9 +325,6 @@ Matrix with_scatter(Matrix sigma, const Vector& model, double scatter2) {
   return sigma;
 }
 
-/// chi^2 of residual r under covariance sigma (full Cholesky whitening).
-double chi2_under(const Vector& r, const Matrix& sigma) { return (whitener(sigma, true) * r).squaredNorm(); }
-
 /// The column contributing most to the model at tau_s (-1: none).
 int dominant_column(const Vector& theta, const Params& p, double tau_s) {
   int best = -1;

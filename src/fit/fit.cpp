@@ -26,6 +26,7 @@ namespace {
 
 constexpr double kFloor = 2.0 * std::numbers::ln2 / std::numbers::pi;  // B^2 -> sigma^2 floor
 
+using detail::chi2_under;
 using detail::Matrix;
 using detail::nnls;
 using detail::log_score_chi2;
@@ -257,11 +258,6 @@ void add_excluded_residuals(FitResult& result, const Curve& full,
   const auto it = std::min_element(full.avar.begin(), full.avar.end());
   result.avar_min_measured = *it;
   result.tau_min_measured_s = full.tau[static_cast<std::size_t>(it - full.avar.begin())];
-}
-
-/// chi^2 of residual r under covariance sigma (full Cholesky whitening).
-double chi2_of(const Vector& r, const Matrix& sigma) {
-  return (whitener(sigma, true) * r).squaredNorm();
 }
 
 void fill_common(FitResult& result, const Curve& curve, const std::vector<double>& sd) {
@@ -855,7 +851,7 @@ FitResult fit_allan_body(std::span<const DevPoint> oadev_points, std::size_t n_p
     const double keep = scatter2;
     auto chi2_at = [&](double s2) {
       scatter2 = s2;
-      return chi2_of(r, model_sigma(th));
+      return chi2_under(r, model_sigma(th));
     };
     double lo = -30.0, hi = 2.0;  // log s^2
     if (chi2_at(std::exp(lo)) <= dof) {
@@ -1135,7 +1131,7 @@ FitResult fit_allan_body(std::span<const DevPoint> oadev_points, std::size_t n_p
   if (!std::isfinite(summary.chi2)) summary.chi2 = summary.chi2_dof = 0.0;
   summary.mismatch_scatter = std::sqrt(scatter_fitted);
   summary.chi2_dof_with_mismatch =
-      summary.dof > 0 ? chi2_of(r, model_sigma(theta)) / static_cast<double>(summary.dof) : 0.0;
+      summary.dof > 0 ? chi2_under(r, model_sigma(theta)) / static_cast<double>(summary.dof) : 0.0;
   if (!std::isfinite(summary.chi2_dof_with_mismatch)) summary.chi2_dof_with_mismatch = 0.0;
   for (std::size_t i = 0; i < k; ++i) {
     sd_points[i] = std::sqrt(std::max(0.0, sigma_sampling(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(i))));

@@ -81,6 +81,10 @@ std::pair<double, double> profile_interval(const Layout& layout, const GmwmCurve
                                            const Bounds& bounds, const Vector& p, double cost, Eigen::Index j,
                                            double rise, double step);
 
+/// Parameters stuck at their lower bound (the objective does not want the term): each magnitude
+/// within 6 log units of its floor, and that term's shape with it.
+std::vector<bool> at_floor(const Layout& layout, const Vector& p, const Bounds& b);
+
 /// Sets p's magnitudes (log variances) to the weighted NNLS solution at p's shapes, a term
 /// NNLS drops to a small value above its floor; returns the NNLS cost.
 double magnitudes_by_nnls(const Layout& layout, const GmwmCurve& c, const Matrix& whiten, const Bounds& bounds,

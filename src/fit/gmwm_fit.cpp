@@ -199,7 +199,8 @@ double chi2_upper(double x, std::size_t dof) {
   return boost::math::cdf(boost::math::complement(d, std::max(0.0, x)));
 }
 
-/// Parameters stuck at their lower bound (the objective does not want the term).
+}  // namespace
+
 std::vector<bool> at_floor(const Layout& layout, const Vector& p, const Bounds& b) {
   std::vector<bool> out(static_cast<std::size_t>(layout.parameters), false);
   for (std::size_t t = 0; t < layout.terms.size(); ++t) {
@@ -211,6 +212,8 @@ std::vector<bool> at_floor(const Layout& layout, const Vector& p, const Bounds& 
   }
   return out;
 }
+
+namespace {
 
 /// The generalised J statistic and its degrees of freedom (gmwm.hpp): e' C^+ e with C the
 /// covariance of the whitened residual e under the model, rank k - p.

@@ -30,13 +30,11 @@ bool same_model(const Layout& layout, const Bounds& bounds, const Vector& p, con
   return true;
 }
 
-/// Whether a magnitude other than parameter j is at (or near) its floor in q.
+/// Whether a magnitude other than parameter j is at its floor in q (at_floor).
 bool other_term_at_floor(const Layout& layout, const Bounds& bounds, const Vector& q, Eigen::Index j) {
-  constexpr double kNearFloor = 6.0;  // log-variance units, as at_floor in gmwm_fit.cpp
-  for (const Eigen::Index i : layout.magnitude) {
-    if (i != j && q(i) < bounds.lo(i) + kNearFloor) return true;
-  }
-  return false;
+  const auto floors = at_floor(layout, q, bounds);
+  return std::any_of(layout.magnitude.begin(), layout.magnitude.end(),
+                     [&](Eigen::Index i) { return i != j && floors[static_cast<std::size_t>(i)]; });
 }
 
 /// The objective with parameter j held at `value` and every other parameter refitted from

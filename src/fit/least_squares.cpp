@@ -67,4 +67,6 @@ Matrix whitener(const Matrix& sigma, bool full) {
   return linv * d.cwiseInverse().asDiagonal();
 }
 
+double chi2_under(const Vector& r, const Matrix& sigma) { return (whitener(sigma, true) * r).squaredNorm(); }
+
 }  // namespace imunoise::fit::detail

@@ -29,4 +29,7 @@ Matrix to_matrix(const std::vector<double>& v, std::size_t k);
 /// full, D^-1 otherwise (and when the Cholesky factorisation fails).
 Matrix whitener(const Matrix& sigma, bool full);
 
+/// chi^2 of residual r under covariance sigma (full Cholesky whitening).
+double chi2_under(const Vector& r, const Matrix& sigma);
+
 }  // namespace imunoise::fit::detail

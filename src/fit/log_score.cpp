@@ -33,7 +33,7 @@ Eigen::VectorXd log_score_residual(std::span<const double> avar_hat, const Eigen
 double log_score_chi2(const Eigen::VectorXd& avar_hat, const Eigen::VectorXd& model, const Eigen::MatrixXd& sigma) {
   const auto r = log_score_residual(
       std::span<const double>(avar_hat.data(), static_cast<std::size_t>(avar_hat.size())), model, sigma);
-  return (whitener(sigma, true) * r).squaredNorm();
+  return chi2_under(r, sigma);
 }
 
 }  // namespace imunoise::fit::detail

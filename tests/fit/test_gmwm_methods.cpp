@@ -171,7 +171,8 @@ TEST(SlowGmwmMethods, TwoAr1ADecadeApart3h) {
 // after a profile can bring back a floored K: 85, 81, 80. Two failure modes (IMUNOISE_GMWM_Z on 30
 // records): K at its floor and the 50 s term carrying the random walk (T_c 7-70x the truth, the
 // truth below the interval), and a fast spurious GM taking the first slot while the three true
-// terms shift one slot up and K absorbs the slowest. The estimator, not the intervals: not done.
+// terms shift one slot up and K absorbs the slowest. Mostly the estimator (the intervals' share,
+// a profile that could not bring K back, is fixed: GmwmFit.AProfileCanBringBackATermAtItsFloor).
 TEST(SlowGmwmMethods, DISABLED_ThreeAr1ADecadeApart3h) {
   ar1_study("white + random walk + AR1 (3e-4, 0.5 s) + AR1 (2e-4, 5 s) + AR1 (1e-4, 50 s), 3 h at 100 Hz",
             {{3e-4, 0.5}, {2e-4, 5.0}, {1e-4, 50.0}}, 3.0, 8000);
