@@ -90,6 +90,22 @@ std::vector<bool> at_floor(const Layout& layout, const Vector& p, const Bounds& 
 double magnitudes_by_nnls(const Layout& layout, const GmwmCurve& c, const Matrix& whiten, const Bounds& bounds,
                           Vector& p);
 
+/// Correlation times a decade apart (from 10^offset times a power of ten) over the curve's span:
+/// from half the shortest tau's Gauss-Markov peak to the longest's.
+std::vector<double> tc_decade_grid(const GmwmCurve& c, double offset);
+
+/// A starting point of the multi-start fit and its NNLS cost.
+struct Start {
+  double cost;
+  Vector p;
+};
+/// The multi-start fit's starting points, least NNLS cost first: T_c / f0 sets from the curve's
+/// bumps and from grids a decade apart, each with its variances by NNLS.
+std::vector<Start> ranked_starts(const Layout& layout, const GmwmCurve& c, const Matrix& whiten, const Bounds& bounds);
+/// Whether two parameter vectors are the same start or optimum: within a factor e^0.3 in every
+/// log parameter.
+bool same_point(const Vector& a, const Vector& b);
+
 /// A fitted model with a given weight: the best of several starts.
 struct ModelFit {
   Layout layout;
@@ -100,6 +116,12 @@ struct ModelFit {
 /// sets from the curve's bumps and from grids a decade apart), warm start `warm` when given.
 ModelFit fit_model(const Layout& layout, const GmwmCurve& c, const Matrix& whiten,
                    const Vector* warm = nullptr);
+
+/// Other local optima of the model at the weight `whiten` whose objective exceeds the optimum
+/// `best`'s by at most `rise`, at most `count`, least objective first; each with its Gauss-Markov
+/// terms relabelled so that they rank by correlation time as best's do (gmwm_near_optima.cpp).
+std::vector<LmResult> near_optima(const Layout& layout, const GmwmCurve& c, const Matrix& whiten,
+                                  const LmResult& best, double rise, std::size_t count);
 
 /// Parametric bootstrap: `replicates` records simulated from the fitted model p (src/sim),
 /// each fitted with the weight `whiten` from p; returns one row of log parameters per

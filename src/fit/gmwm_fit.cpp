@@ -96,8 +96,17 @@ double magnitudes_by_nnls(const Layout& layout, const GmwmCurve& c, const Matrix
   return (whiten * g * x - b).squaredNorm();
 }
 
-ModelFit fit_model(const Layout& layout, const GmwmCurve& c, const Matrix& whiten, const Vector* warm) {
-  const Bounds bounds = bounds_for(layout, c);
+std::vector<double> tc_decade_grid(const GmwmCurve& c, double offset) {
+  const double tc_lo = c.tau_s.front() / kGmPeakRatio / 2.0, tc_hi = c.tau_s.back() / kGmPeakRatio;
+  std::vector<double> out;
+  for (double e = std::floor(std::log10(tc_lo)) + offset; e <= std::log10(tc_hi) + 1e-9; e += 1.0) {
+    const double t = std::pow(10.0, e);
+    if (t >= tc_lo) out.push_back(t);
+  }
+  return out;
+}
+
+std::vector<Start> ranked_starts(const Layout& layout, const GmwmCurve& c, const Matrix& whiten, const Bounds& bounds) {
   std::vector<std::size_t> gm, sin;
   for (std::size_t t = 0; t < layout.terms.size(); ++t) {
     if (layout.terms[t] == GmwmTerm::GM) gm.push_back(t);
@@ -106,13 +115,7 @@ ModelFit fit_model(const Layout& layout, const GmwmCurve& c, const Matrix& white
   // Shape candidates: T_c on two grids a decade apart (offset by half a decade) over the
   // curve's span, and the bumps; f0 from the bumps and a decade grid.
   const double tc_lo = c.tau_s.front() / kGmPeakRatio / 2.0, tc_hi = c.tau_s.back() / kGmPeakRatio;
-  std::vector<std::vector<double>> tc_grids(3);
-  for (int half = 0; half < 2; ++half) {
-    for (double e = std::floor(std::log10(tc_lo)) + 0.5 * half; e <= std::log10(tc_hi) + 1e-9; e += 1.0) {
-      const double t = std::pow(10.0, e);
-      if (t >= tc_lo) tc_grids[static_cast<std::size_t>(half)].push_back(t);
-    }
-  }
+  std::vector<std::vector<double>> tc_grids{tc_decade_grid(c, 0.0), tc_decade_grid(c, 0.5), {}};
   for (double tau : bump_taus(c)) tc_grids[2].push_back(tau / kGmPeakRatio);
   std::vector<std::vector<double>> tc_sets;
   if (gm.empty()) {
@@ -146,10 +149,6 @@ ModelFit fit_model(const Layout& layout, const GmwmCurve& c, const Matrix& white
     for (double tau : bump_taus(c)) f_values.push_back(0.371 / tau);
     for (double tau = c.tau_s.front(); tau <= c.tau_s.back(); tau *= 8.0) f_values.push_back(0.371 / tau);
   }
-  struct Start {
-    double cost;
-    Vector p;
-  };
   std::vector<Start> starts;
   for (const auto& tcs : tc_sets) {
     for (double f0 : f_values) {
@@ -166,6 +165,14 @@ ModelFit fit_model(const Layout& layout, const GmwmCurve& c, const Matrix& white
     }
   }
   std::sort(starts.begin(), starts.end(), [](const Start& a, const Start& b2) { return a.cost < b2.cost; });
+  return starts;
+}
+
+bool same_point(const Vector& a, const Vector& b) { return (a - b).cwiseAbs().maxCoeff() < 0.3; }
+
+ModelFit fit_model(const Layout& layout, const GmwmCurve& c, const Matrix& whiten, const Vector* warm) {
+  const Bounds bounds = bounds_for(layout, c);
+  const std::vector<Start> starts = ranked_starts(layout, c, whiten, bounds);
   ModelFit best;
   best.layout = layout;
   best.lm.cost = std::numeric_limits<double>::infinity();
@@ -182,7 +189,7 @@ ModelFit fit_model(const Layout& layout, const GmwmCurve& c, const Matrix& white
   for (const auto& s : starts) {
     if (used >= kStartsKept) break;
     // Skip starts that are the same point as one already run.
-    if (std::any_of(tried.begin(), tried.end(), [&](const Vector& t) { return (t - s.p).cwiseAbs().maxCoeff() < 0.3; })) continue;
+    if (std::any_of(tried.begin(), tried.end(), [&](const Vector& t) { return same_point(t, s.p); })) continue;
     tried.push_back(s.p);
     run(s.p);
     ++used;
@@ -765,15 +772,42 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
   {
     const auto kk = static_cast<Eigen::Index>(k);
     const Matrix var_w = log_covariance(fin.whiten * d, Matrix::Identity(kk, kk), fixed);
+    std::vector<double> rise(wald.size(), std::numeric_limits<double>::quiet_NaN());
     for (Eigen::Index j = 0; j < layout.parameters; ++j) {
       const auto u = static_cast<std::size_t>(j);
       const double sd = std::sqrt(cov(j, j));
       wald[u] = ends[u] = {lm.p(j) - zq * sd, lm.p(j) + zq * sd};
       if (!std::isfinite(sd) || !(var_w(j, j) > 0.0) || !std::isfinite(var_w(j, j))) continue;
-      const double rise = zq * zq * cov(j, j) / var_w(j, j);
-      const auto [lo, hi] = profile_interval(layout, c, fin.whiten, bounds, lm.p, lm.cost, j, rise,
+      rise[u] = zq * zq * cov(j, j) / var_w(j, j);
+      const auto [lo, hi] = profile_interval(layout, c, fin.whiten, bounds, lm.p, lm.cost, j, rise[u],
                                                std::clamp(sd, 0.02, 1.0));
       ends[u] = {std::min(ends[u].first, lo), std::max(ends[u].second, hi)};
+    }
+    // The profile set's other pieces: another labelling of the Gauss-Markov terms whose objective
+    // is within a parameter's rise of the optimum is inside that parameter's profile set, and so
+    // is the piece a profile marched from it finds (three-AR1 records of docs/fit.md: a spurious
+    // fast term with K carrying the 50 s term, the true labelling 0.3-2 above the optimum).
+    constexpr std::size_t kOtherPieces = 2;
+    double widest = 0.0;
+    for (const double r : rise) {
+      if (std::isfinite(r)) widest = std::max(widest, r);
+    }
+    for (const LmResult& other : near_optima(layout, c, fin.whiten, lm, widest, kOtherPieces)) {
+      const auto other_fixed = at_floor(layout, other.p, bounds);
+      for (Eigen::Index j = 0; j < layout.parameters; ++j) {
+        const auto u = static_cast<std::size_t>(j);
+        if (!std::isfinite(rise[u]) || other.cost - lm.cost > rise[u]) continue;
+        // A term at its floor there: its variance may be nil, its shape is arbitrary.
+        if (other_fixed[u]) {
+          if (std::find(layout.magnitude.begin(), layout.magnitude.end(), j) != layout.magnitude.end()) {
+            ends[u].first = std::min(ends[u].first, other.p(j));
+          }
+          continue;
+        }
+        const auto [lo, hi] = profile_interval(layout, c, fin.whiten, bounds, other.p, lm.cost, j, rise[u],
+                                               std::clamp(std::sqrt(cov(j, j)), 0.02, 1.0));
+        ends[u] = {std::min({ends[u].first, lo, other.p(j)}), std::max({ends[u].second, hi, other.p(j)})};
+      }
     }
   }
   auto percentile = [&](Eigen::Index j, double q) {

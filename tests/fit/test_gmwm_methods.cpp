@@ -168,11 +168,14 @@ TEST(SlowGmwmMethods, TwoAr1ADecadeApart3h) {
 
 // DISABLED (2026-12-06, 100 records, seeds 8000-8099): GM2 T_c covered 85, GM3 sigma 82, GM3 T_c
 // 77 of 100 (band [88, 100]); GM3 T_c mean error +673 %; 2026-12-07 after the settling: 84, 81, 76;
-// after a profile can bring back a floored K: 85, 81, 80. Two failure modes (IMUNOISE_GMWM_Z on 30
-// records): K at its floor and the 50 s term carrying the random walk (T_c 7-70x the truth, the
-// truth below the interval), and a fast spurious GM taking the first slot while the three true
-// terms shift one slot up and K absorbs the slowest. Mostly the estimator (the intervals' share,
-// a profile that could not bring K back, is fixed: GmwmFit.AProfileCanBringBackATermAtItsFloor).
+// after a profile can bring back a floored K: 85, 81, 80; after the profile set's other pieces:
+// 92, 86, 83 (GM2 T_c in the band). What is left is the slowest term: K at its floor with the
+// 50 s term carrying the random walk (T_c 6-14x the truth, the truth below the interval; on
+// record 3 the true labelling is ~5 above the optimum, outside the rise), or its sigma fitted
+// 1.4-1.7x the truth with a shorter T_c. The spurious fast term with K absorbing the slowest
+// (records 2, 9, 10) is now an interval the other labelling widens:
+// GmwmFit.AnotherLabellingAsGoodWidensTheIntervals; a floored K coming back in a profile:
+// GmwmFit.AProfileCanBringBackATermAtItsFloor.
 TEST(SlowGmwmMethods, DISABLED_ThreeAr1ADecadeApart3h) {
   ar1_study("white + random walk + AR1 (3e-4, 0.5 s) + AR1 (2e-4, 5 s) + AR1 (1e-4, 50 s), 3 h at 100 Hz",
             {{3e-4, 0.5}, {2e-4, 5.0}, {1e-4, 50.0}}, 3.0, 8000);

@@ -58,7 +58,9 @@
 // sandwich,
 // on the log scale so that they stay positive) and, with bootstrap > 0, the parametric
 // bootstrap from the fitted model (sim::ChannelGenerator, seeded, threads): percentile intervals
-// of the log parameters. A term whose log variance runs to the floor (the objective does not
+// of the log parameters. The asymptotic interval reported is the hull of the Wald interval, the
+// profile interval and the profile around any other optimum within the rise (docs/fit.md). A
+// term whose log variance runs to the floor (the objective does not
 // need it) or whose T_c leaves the span of the curve's taus is reported not identified.
 #include <cstddef>
 #include <cstdint>
