@@ -74,8 +74,9 @@ std::vector<Start> moved_term_starts(const Layout& layout, const GmwmCurve& c, c
 
 std::vector<LmResult> near_optima(const Layout& layout, const GmwmCurve& c, const Matrix& whiten,
                                   const LmResult& best, double rise, std::size_t count) {
-  // Up to eight local fits: the optimum with one term moved (the least NNLS costs first), then
-  // the fit's own best starts (another labelling from scratch).
+  // Up to eight local fits: the optimum with one term moved (the least NNLS costs first; with
+  // three GM terms there are usually eight or more), then the fit's own three best starts
+  // (another labelling from scratch) if any of the eight are left.
   constexpr std::size_t kStarts = 8;
   constexpr std::size_t kFreshStarts = 3;
   if (std::count(layout.terms.begin(), layout.terms.end(), GmwmTerm::GM) < 2) return {};
