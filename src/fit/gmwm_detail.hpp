@@ -1,6 +1,7 @@
 #pragma once
 // Internals of the GMWM fit shared by gmwm.cpp (model, optimiser), gmwm_fit.cpp (starts,
-// weights, selection, intervals) and gmwm_bootstrap.cpp. Internal to the fit module.
+// weights, selection, intervals), gmwm_profile.cpp (profile intervals), gmwm_near_optima.cpp
+// (other optima as good, for the intervals) and gmwm_bootstrap.cpp. Internal to the fit module.
 #include <cstddef>
 #include <cstdint>
 #include <string>
