@@ -156,7 +156,8 @@ def test_gmwm_j_test_accepts_the_exact_model_when_random_walk_dominates():
     # N 1.7e-4, K 1e-4 in rad/s units), the exact model. Its long scales sit 3-5 sd above the
     # fitted curve, as a random walk's few-degree-of-freedom estimates often do; the Gaussian J
     # gave 43.9 on 17 dof (p 3.5e-4, "the J test rejects the model"). The J test now scores each
-    # scale on the log of its chi-square law (docs/fit.md: 1,000 such records, 5 warnings).
+    # scale on the cube root of its chi-square law (docs/fit.md: 1,000 such records, 1 warning;
+    # this one 22.0 on 17, p 0.18).
     rng = np.random.default_rng(77)
     n, tau0, n_true, k_true = 720000, 0.01, 1.7e-4, 1e-4
     white = rng.standard_normal(n) * n_true / math.sqrt(tau0)
@@ -171,8 +172,8 @@ def test_gmwm_j_test_accepts_the_exact_model_when_random_walk_dominates():
 def test_default_fit_accepts_the_exact_model_when_random_walk_dominates():
     # The same record through the default fit (wls): its chi^2 scored the long taus' estimates as
     # Gaussian, gave chi2/dof 13.2, rejected the exact model and widened every interval by an
-    # 18.5 % "mismatch scatter" (N 1.682e-4, 1 % low; K 1.19e-4). Each tau is now scored on the log
-    # of its chi-square law, as the gmwm J test is (docs/fit.md: 1,000 such records).
+    # 18.5 % "mismatch scatter" (N 1.682e-4, 1 % low; K 1.19e-4). Each tau is now scored on the
+    # cube root of its chi-square law, as the gmwm J test is (docs/fit.md: 1,000 such records).
     rng = np.random.default_rng(77)
     n, tau0, n_true, k_true = 720000, 0.01, 1.7e-4, 1e-4
     white = rng.standard_normal(n) * n_true / math.sqrt(tau0)

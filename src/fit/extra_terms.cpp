@@ -15,7 +15,7 @@
 #include "imunoise/confidence/interval.hpp"
 #include "imunoise/sim/gauss_markov.hpp"
 #include "least_squares.hpp"
-#include "log_score.hpp"
+#include "cube_root_score.hpp"
 
 namespace imunoise::fit {
 
@@ -472,7 +472,7 @@ class ExtraFitter {
     // estimated (Paule-Mandel) and the fit redone with it, to a fixed point.
     if (mismatch_ && dof_of() > 0) {
       const double dof = static_cast<double>(dof_of());
-      if (log_score_chi2(y, model_vector(curve_, c.fit.theta, c.fit.p), covariance(c, false)) <=
+      if (cube_root_score_chi2(y, model_vector(curve_, c.fit.theta, c.fit.p), covariance(c, false)) <=
           chi2_quantile(1.0 - alpha_, dof)) {
         if (c.scatter2 > 0.0) {  // the candidate describes the curve: exact weights
           c.scatter2 = 0.0;
@@ -507,7 +507,7 @@ class ExtraFitter {
     const Weighted w(curve_, c.sigma);
     c.fit = best_fit(w, grids_, c.cols, c.fit.p, {}, -1, true);
     {
-      c.chi2_sampling = log_score_chi2(y, model_vector(curve_, c.fit.theta, c.fit.p), covariance(c, false));
+      c.chi2_sampling = cube_root_score_chi2(y, model_vector(curve_, c.fit.theta, c.fit.p), covariance(c, false));
       c.dof = dof_of();
     }
     for (int e : extras) {

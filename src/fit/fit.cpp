@@ -19,7 +19,7 @@
 #include "imunoise/error.hpp"
 #include "extra_terms_fit.hpp"
 #include "least_squares.hpp"
-#include "log_score.hpp"
+#include "cube_root_score.hpp"
 
 namespace imunoise::fit {
 namespace {
@@ -29,7 +29,7 @@ constexpr double kFloor = 2.0 * std::numbers::ln2 / std::numbers::pi;  // B^2 ->
 using detail::chi2_under;
 using detail::Matrix;
 using detail::nnls;
-using detail::log_score_chi2;
+using detail::cube_root_score_chi2;
 using detail::subset_ls;
 using detail::to_matrix;
 using detail::Vector;
@@ -967,7 +967,7 @@ FitResult fit_allan_body(std::span<const DevPoint> oadev_points, std::size_t n_p
     // and refit with it (its weights depend on the model, so iterate to a fixed point).
     if (options.model_mismatch && k > free_set.size()) {
       const double dof = static_cast<double>(k - free_set.size());
-      if (log_score_chi2(y, g * theta.cwiseMax(0.0), sigma) > chi2_quantile(1.0 - options.mismatch_test_alpha, dof)) {
+      if (cube_root_score_chi2(y, g * theta.cwiseMax(0.0), sigma) > chi2_quantile(1.0 - options.mismatch_test_alpha, dof)) {
         cap_to_data = true;
         for (int outer = 0; outer < 8; ++outer) {
           const double next = solve_scatter(theta, dof);
@@ -1125,7 +1125,7 @@ FitResult fit_allan_body(std::span<const DevPoint> oadev_points, std::size_t n_p
   scatter2 = 0.0;
   const Matrix sigma_sampling = model_sigma(theta);
   scatter2 = scatter_fitted;
-  summary.chi2 = log_score_chi2(y, g * theta.cwiseMax(0.0), sigma_sampling);
+  summary.chi2 = cube_root_score_chi2(y, g * theta.cwiseMax(0.0), sigma_sampling);
   summary.dof = k > free_set.size() ? k - free_set.size() : 0;
   summary.chi2_dof = summary.dof > 0 ? summary.chi2 / static_cast<double>(summary.dof) : 0.0;
   if (!std::isfinite(summary.chi2)) summary.chi2 = summary.chi2_dof = 0.0;

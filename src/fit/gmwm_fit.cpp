@@ -18,7 +18,7 @@
 #include "imunoise/fit/gmwm.hpp"
 #include "gmwm_detail.hpp"
 #include "least_squares.hpp"
-#include "log_score.hpp"
+#include "cube_root_score.hpp"
 
 namespace imunoise::fit {
 namespace detail {
@@ -359,12 +359,12 @@ OwnWeight at_own_weight(const Layout& layout, const GmwmCurve& c, const Vector& 
 }
 
 /// The J statistic of the model p and its degrees of freedom, with sigma the covariance of the
-/// wavelet variances and wh the whitener of the weight (the log-score residual, j_test).
+/// wavelet variances and wh the whitener of the weight (the cube-root-score residual, j_test).
 std::pair<double, std::size_t> j_of(const Layout& layout, const GmwmCurve& c, const Vector& p, const Matrix& sigma,
                                     const Matrix& wh) {
   Matrix d;
   const Vector model = model_avar(layout, p, c, &d);
-  const Vector e = wh * log_score_residual(c.avar, model, sigma);
+  const Vector e = wh * cube_root_score_residual(c.avar, model, sigma);
   const auto fixed = at_floor(layout, p, bounds_for(layout, c));
   return j_test(e, wh * d, wh * sigma * wh.transpose(), fixed);
 }

@@ -96,9 +96,10 @@ TEST(FitExtraTerms, ExactCurveWithGaussMarkovIsRecovered) {
   EXPECT_NEAR(r.coefficients.random_walk.value / kN, 1.0, 1e-3);
   EXPECT_NEAR(r.coefficients.bias_instability.value / kB, 1.0, 1e-3) << r.coefficients.bias_instability.note;
   EXPECT_NEAR(r.terms[fit::kK].estimate / kK, 1.0, 1e-2);
-  // chi^2 scores each tau on the log of its chi-square law, whose mean lies below 0: on the exact
-  // expected curve the long taus (few degrees of freedom) keep a small score, nothing else
-  // (measured 0.0217 per dof; a misfit of one sd at one tau adds ~1 / dof).
+  // chi^2 scores each tau on the cube root of its chi-square law, whose mean lies below 1: on the
+  // exact expected curve the long taus (few degrees of freedom) keep a small score, nothing else
+  // (measured 0.0217 per dof with the log score used before; a misfit of one sd at one tau adds
+  // ~1 / dof).
   EXPECT_LT(r.summary.chi2_dof, 0.1);
   bool gm_dominates = false;
   for (const auto& p : r.residuals) gm_dominates = gm_dominates || p.dominant_term == fit::kGM;

@@ -229,10 +229,10 @@ TEST(GmwmFit, RecoversTheModelFromItsExactCurve) {
   EXPECT_NEAR(r.terms[2].shape.value / 2.0, 1.0, 1e-3);
   EXPECT_NEAR(r.terms[3].magnitude.value / 1e-4, 1.0, 1e-3);
   EXPECT_NEAR(r.terms[3].shape.value / 20.0, 1.0, 1e-3);
-  // The J test scores each scale's log(estimate / model) against the log of its chi-square law,
-  // whose mean lies below 0 (a chi-square's median is below its mean): on the exact expected
-  // curve each long scale (1-4 degrees of freedom) keeps a score of 0.1-0.45, nothing else, so
-  // J is a fraction of one on 14 dof (measured 0.34); a misfit of one sd at one scale adds ~1.
+  // The J test scores each scale's (estimate / model)^(1/3) against the cube root of its
+  // chi-square law, whose mean lies below 1: on the exact expected curve each long scale (1-4
+  // degrees of freedom) keeps a small score, nothing else, so J is a fraction of one on 14 dof
+  // (measured 0.34 with the log score used before); a misfit of one sd at one scale adds ~1.
   EXPECT_LT(r.j_statistic, 1.0);
 }
 
@@ -727,9 +727,10 @@ WlsOnExactModel wls_on_exact_model(int runs, std::uint64_t seed0) {
 // Each count against the binomial bound a correct test exceeds with probability <= 1 % (200
 // records: <= 18 at 5 %, <= 6 at 1 %, <= 2 at 1e-3; coverage >= 183 of 200). Measured
 // 2026-12-07 (seeds 3000-3199): 16, 5, 0; N 191, K 189 covered. With the Gaussian chi^2 the
-// default fit used before (the residual a_hat - a, not its log score): 23, 7 and 1 — the first
-// two over their bounds; on 1,000 records 88, 26, 7 against the log score's 63, 10, 0 (expected
-// 50, 10, 1), the 7 widened by a scatter the exact model does not have (docs/fit.md).
+// default fit used before (the residual a_hat - a, not its score): 23, 7 and 1 — the first
+// two over their bounds; on 1,000 records 88, 26, 7 against the log score's 63, 10, 0 and the
+// cube-root score's 63, 6, 0 (expected 50, 10, 1), the 7 widened by a scatter the exact model
+// does not have (docs/fit.md).
 TEST(WlsChi2Test, HonestOnExactWhitePlusRandomWalk) {
   const char* env = std::getenv("IMUNOISE_WLS_RUNS");
   const int runs = env != nullptr ? std::atoi(env) : 200;

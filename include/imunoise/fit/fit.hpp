@@ -134,7 +134,7 @@ struct FitOptions {
   std::size_t distortion_max_m = 16;
   /// wls: model mismatch (ols, the paper's unweighted method, is left as it was: its estimate
   /// does not minimise chi^2, so the test below would reject exact models). When the chi^2 of the fit (full model covariance,
-  /// each tau's residual its log score: FitSummary::chi2) exceeds its
+  /// each tau's residual its cube-root score: FitSummary::chi2) exceeds its
   /// (1 - mismatch_test_alpha) quantile, the power-law model does not describe the curve to
   /// within its sampling noise (a real sensor: temperature, a sinusoid, a non-1/f floor). A
   /// relative scatter s of the curve about the model is then estimated (Paule-Mandel: chi^2 =
@@ -200,9 +200,9 @@ struct FitSummary {
   Termination termination = Termination::degenerate_input;
   int iterations = 0;
   std::size_t points_used = 0;
-  /// r' Sigma^-1 r with the model covariance (correlations included), each tau's r the log score
-  /// of its estimate (log(a_hat / a) against its chi-square law, times its sd; a_hat - a for
-  /// many degrees of freedom): honest where the long taus have few (docs/fit.md)
+  /// r' Sigma^-1 r with the model covariance (correlations included), each tau's r the cube-root
+  /// score of its estimate ((a_hat / a)^(1/3) against its chi-square law, times its sd; a_hat - a
+  /// for many degrees of freedom): honest where the long taus have few (docs/fit.md)
   double chi2 = 0.0;
   std::size_t dof = 0;        ///< points_used - free parameters
   double chi2_dof = 0.0;      ///< chi2 / dof (0 when dof = 0)

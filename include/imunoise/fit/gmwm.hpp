@@ -42,9 +42,9 @@
 // non-negative least squares for each set of T_c starts, the T_c from the curve's bumps and
 // from grids a decade apart over the curve's tau span (never from constants tuned to a record).
 //
-// J test: e' [(I - P) S (I - P)]^+ e with e = Wh r the whitened residual, r_i the log score of
-// scale i, (log(a_hat_i / a_i) - E) / sd of log(chi^2_nu / nu), times sqrt(Sigma_ii) (for a
-// large nu, a_hat_i - a_i; the long scales' skew taken out, docs/fit.md),
+// J test: e' [(I - P) S (I - P)]^+ e with e = Wh r the whitened residual, r_i the cube-root score
+// of scale i, ((a_hat_i / a_i)^(1/3) - E) / sd of (chi^2_nu / nu)^(1/3), times sqrt(Sigma_ii) (for
+// a large nu, a_hat_i - a_i; the long scales' skew taken out, docs/fit.md),
 // S = Wh Sigma Wh' and P the projector on the whitened Jacobian: the residual's own covariance
 // (delta method), so the statistic is chi^2(k - p) for an exact Gaussian model whatever W is; with
 // the efficient W and large nu it is Hansen's (1982) J = min objective. WVIC (Stebler et al. 2014)

@@ -1,0 +1,28 @@
+// The cube-root score of an Allan variance estimate: its residual against the model with the
+// chi-square skew taken out, for goodness-of-fit statistics that stay honest where the
+// estimates have few degrees of freedom (the long taus of a random walk).
+#pragma once
+
+#include <span>
+
+#include <Eigen/Dense>
+
+namespace imunoise::fit::detail {
+
+/// a_hat - a(theta) at each tau, replaced by the standardised cube-root score times its sd. An
+/// Allan variance estimate is close to a (chi^2_nu / nu) with nu = 2 a^2 / Var (a few degrees
+/// of freedom at the long taus), whose skew a Gaussian statistic misjudges; the cube root of
+/// chi^2_nu / nu is nearly Gaussian in both tails (Wilson and Hilferty), here standardised by its
+/// exact mean and variance. (The log, used before 2026-12-07, has a long lower tail: one tau at
+/// nu = 1 exceeded the 1e-3 point of chi^2(1) 11 times too often, docs/fit.md.) For a large nu
+/// the score is the residual itself, so a statistic built on the covariance `sigma` (whitening,
+/// projections) applies unchanged.
+Eigen::VectorXd cube_root_score_residual(std::span<const double> avar_hat, const Eigen::VectorXd& model,
+                                         const Eigen::MatrixXd& sigma);
+
+/// chi^2 of the measured curve against the model under the covariance sigma (full whitening),
+/// each tau's residual its cube-root score: the wls fit's mismatch test and FitSummary::chi2.
+double cube_root_score_chi2(const Eigen::VectorXd& avar_hat, const Eigen::VectorXd& model,
+                            const Eigen::MatrixXd& sigma);
+
+}  // namespace imunoise::fit::detail
