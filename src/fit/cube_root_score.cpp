@@ -16,8 +16,8 @@ struct Moments {
 };
 
 /// Mean and sd of (chi^2_nu / nu)^(1/3): E x^(k/3) = (2 / nu)^(k/3) Gamma(nu/2 + k/3) / Gamma(nu/2).
-/// Past nu = 1e4 Wilson and Hilferty's 1 - 2 / (9 nu) and 2 / (9 nu), whose O(nu^-2) error is
-/// below the rounding of the exact difference m2 - m1^2 there.
+/// Past nu = 1e4 Wilson and Hilferty's 1 - 2 / (9 nu) and 2 / (9 nu) (relative error of order
+/// 1 / nu), since the exact difference m2 - m1^2 loses digits as nu grows.
 Moments cube_root_moments(double nu) {
   if (nu > 1e4) return {1.0 - 2.0 / (9.0 * nu), std::sqrt(2.0 / (9.0 * nu))};
   const double half = 0.5 * nu;
