@@ -14,8 +14,8 @@
 #include "imunoise/confidence/edf.hpp"
 #include "imunoise/confidence/interval.hpp"
 #include "imunoise/sim/gauss_markov.hpp"
-#include "least_squares.hpp"
 #include "cube_root_score.hpp"
+#include "least_squares.hpp"
 
 namespace imunoise::fit {
 

@@ -18,8 +18,8 @@
 #include "imunoise/confidence/interval.hpp"
 #include "imunoise/error.hpp"
 #include "extra_terms_fit.hpp"
-#include "least_squares.hpp"
 #include "cube_root_score.hpp"
+#include "least_squares.hpp"
 
 namespace imunoise::fit {
 namespace {
@@ -27,9 +27,9 @@ namespace {
 constexpr double kFloor = 2.0 * std::numbers::ln2 / std::numbers::pi;  // B^2 -> sigma^2 floor
 
 using detail::chi2_under;
+using detail::cube_root_score_chi2;
 using detail::Matrix;
 using detail::nnls;
-using detail::cube_root_score_chi2;
 using detail::subset_ls;
 using detail::to_matrix;
 using detail::Vector;

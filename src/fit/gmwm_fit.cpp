@@ -17,8 +17,8 @@
 #include "imunoise/fit/fit.hpp"
 #include "imunoise/fit/gmwm.hpp"
 #include "gmwm_detail.hpp"
-#include "least_squares.hpp"
 #include "cube_root_score.hpp"
+#include "least_squares.hpp"
 
 namespace imunoise::fit {
 namespace detail {
