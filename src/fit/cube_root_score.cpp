@@ -29,6 +29,12 @@ Moments cube_root_moments(double nu) {
 
 }  // namespace
 
+CubeRootScore cube_root_score(double a_hat, double a, double nu) {
+  const Moments m = cube_root_moments(nu);
+  const double root = std::cbrt(a_hat / a);
+  return {(root - m.mean) / m.sd, -root / (3.0 * a * m.sd)};
+}
+
 Eigen::VectorXd cube_root_score_residual(std::span<const double> avar_hat, const Eigen::VectorXd& model,
                                          const Eigen::MatrixXd& sigma) {
   Eigen::VectorXd r(model.size());
@@ -40,8 +46,7 @@ Eigen::VectorXd cube_root_score_residual(std::span<const double> avar_hat, const
       r(i) = a_hat - a;
       continue;
     }
-    const Moments m = cube_root_moments(nu);
-    r(i) = (std::cbrt(a_hat / a) - m.mean) / m.sd * sd;
+    r(i) = cube_root_score(a_hat, a, nu).z * sd;
   }
   return r;
 }

@@ -74,11 +74,32 @@ Bounds bounds_for(const Layout& layout, const GmwmCurve& c);
 LmResult levenberg_marquardt(const Layout& layout, const GmwmCurve& c, const Matrix& whiten,
                              Vector p, const Bounds& bounds, int max_iterations);
 
-/// The profile interval of parameter j: the values v for which the objective with p(j) = v
+/// The objective a profile interval climbs. `scale_dof` empty: the fit's own, the linear
+/// ||Wh (a_hat - a(p))||^2. Otherwise the same quadratic form in each scale's cube-root score
+/// (cube_root_score.hpp) times `scale_sd`, with both held at the optimum's values: at the long
+/// scales an estimate has a few degrees of freedom and the linear form's rise misjudges a
+/// chi-square's skew there, as J's did before the cube-root score (docs/fit.md).
+struct ProfileObjective {
+  Matrix whiten;
+  Vector scale_dof;
+  Vector scale_sd;
+};
+/// The cube-root-score objective at the optimum: whitener wh, each scale's sd and degrees of
+/// freedom 2 a^2 / Var from sigma and the model's values `model`.
+ProfileObjective score_objective(const Matrix& wh, const Matrix& sigma, const Vector& model);
+/// The objective at p.
+double objective_at(const ProfileObjective& o, const Layout& layout, const GmwmCurve& c, const Vector& p);
+/// Its local minimum from `from` within `bounds`: LM for the linear objective; for the score
+/// objective Gauss-Newton on the scores linearised in a (each step an LM fit of pseudo-data),
+/// stopped when the objective stops falling.
+LmResult minimise(const ProfileObjective& o, const Layout& layout, const GmwmCurve& c, const Bounds& bounds,
+                  const Vector& from);
+
+/// The profile interval of parameter j: the values v for which the objective `o` with p(j) = v
 /// and every other parameter refitted (within `bounds`, those of the fit: bounds_for) exceeds
 /// `cost` (the objective at p, the optimum) by at most `rise`; found by doubling steps from p(j)
 /// (first `step`) and bisection. An end at a bound is returned as that bound.
-std::pair<double, double> profile_interval(const Layout& layout, const GmwmCurve& c, const Matrix& whiten,
+std::pair<double, double> profile_interval(const Layout& layout, const GmwmCurve& c, const ProfileObjective& o,
                                            const Bounds& bounds, const Vector& p, double cost, Eigen::Index j,
                                            double rise, double step);
 

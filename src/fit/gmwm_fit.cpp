@@ -773,15 +773,34 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
     const auto kk = static_cast<Eigen::Index>(k);
     const Matrix var_w = log_covariance(fin.whiten * d, Matrix::Identity(kk, kk), fixed);
     std::vector<double> rise(wald.size(), std::numeric_limits<double>::quiet_NaN());
+    const ProfileObjective linear{fin.whiten, {}, {}};
     for (Eigen::Index j = 0; j < layout.parameters; ++j) {
       const auto u = static_cast<std::size_t>(j);
       const double sd = std::sqrt(cov(j, j));
       wald[u] = ends[u] = {lm.p(j) - zq * sd, lm.p(j) + zq * sd};
       if (!std::isfinite(sd) || !(var_w(j, j) > 0.0) || !std::isfinite(var_w(j, j))) continue;
       rise[u] = zq * zq * cov(j, j) / var_w(j, j);
-      const auto [lo, hi] = profile_interval(layout, c, fin.whiten, bounds, lm.p, lm.cost, j, rise[u],
+      const auto [lo, hi] = profile_interval(layout, c, linear, bounds, lm.p, lm.cost, j, rise[u],
                                                std::clamp(sd, 0.02, 1.0));
       ends[u] = {std::min(ends[u].first, lo), std::max(ends[u].second, hi)};
+    }
+    // The profile of the cube-root-score objective, a piece of each set too: the linear form's
+    // rise is a Gaussian's, and at the long scales (a random walk's, a slow term's) an estimate is
+    // a chi-square of a few degrees of freedom; in the scores it is nearly Gaussian, as J's
+    // residuals are. Its minimum is near the optimum, not at it: the profile starts there, and its
+    // rise is zq^2 (the weight is the efficient one). Three-AR1 records of docs/fit.md: K at its
+    // floor with the 50 s term carrying the random walk, the truth outside the linear profile.
+    // With the diagonal weight zq^2 would not be calibrated: the linear profile only.
+    if (c.full_weight) {
+      const ProfileObjective scored = score_objective(fin.whiten, fin.sigma, model);
+      const LmResult at = minimise(scored, layout, c, bounds, lm.p);
+      for (Eigen::Index j = 0; j < layout.parameters && std::isfinite(at.cost); ++j) {
+        const auto u = static_cast<std::size_t>(j);
+        if (!std::isfinite(rise[u])) continue;
+        const auto [lo, hi] = profile_interval(layout, c, scored, bounds, at.p, at.cost, j, zq * zq,
+                                               std::clamp(std::sqrt(cov(j, j)), 0.02, 1.0));
+        ends[u] = {std::min(ends[u].first, lo), std::max(ends[u].second, hi)};
+      }
     }
     // The profile set's other pieces: another labelling of the Gauss-Markov terms whose objective
     // is within a parameter's rise of the optimum is inside that parameter's profile set, and so
@@ -804,7 +823,7 @@ GmwmResult fit_gmwm(std::span<const std::size_t> m, std::span<const double> avar
           }
           continue;
         }
-        const auto [lo, hi] = profile_interval(layout, c, fin.whiten, bounds, other.p, lm.cost, j, rise[u],
+        const auto [lo, hi] = profile_interval(layout, c, linear, bounds, other.p, lm.cost, j, rise[u],
                                                std::clamp(std::sqrt(cov(j, j)), 0.02, 1.0));
         ends[u] = {std::min({ends[u].first, lo, other.p(j)}), std::max({ends[u].second, hi, other.p(j)})};
       }

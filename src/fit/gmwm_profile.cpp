@@ -4,9 +4,84 @@
 #include <limits>
 #include <utility>
 
+#include "cube_root_score.hpp"
 #include "gmwm_detail.hpp"
 
 namespace imunoise::fit::detail {
+namespace {
+
+/// The score objective's residual sd_i z_i(a_i) at the model values a and, in *slope, its
+/// derivative's negative -d r_i / d a_i (positive). A scale without a usable score (no positive
+/// estimate or model, or past 1e8 degrees of freedom) keeps the linear residual, as
+/// cube_root_score_residual does.
+Vector score_residual(const ProfileObjective& o, const GmwmCurve& c, const Vector& a, Vector* slope) {
+  Vector r(a.size());
+  if (slope != nullptr) slope->resize(a.size());
+  for (Eigen::Index i = 0; i < a.size(); ++i) {
+    const double a_hat = c.avar[static_cast<std::size_t>(i)], nu = o.scale_dof(i), sd = o.scale_sd(i);
+    double dr = -1.0;
+    if (a_hat > 0.0 && a(i) > 0.0 && std::isfinite(nu) && nu <= 1e8) {
+      const CubeRootScore s = cube_root_score(a_hat, a(i), nu);
+      r(i) = s.z * sd;
+      dr = s.dz_da * sd;
+    } else {
+      r(i) = a_hat - a(i);
+    }
+    if (slope != nullptr) (*slope)(i) = -dr;
+  }
+  return r;
+}
+
+}  // namespace
+
+ProfileObjective score_objective(const Matrix& wh, const Matrix& sigma, const Vector& model) {
+  ProfileObjective o{wh, Vector(model.size()), Vector(model.size())};
+  for (Eigen::Index i = 0; i < model.size(); ++i) {
+    o.scale_sd(i) = std::sqrt(sigma(i, i));
+    o.scale_dof(i) = 2.0 * model(i) * model(i) / sigma(i, i);
+  }
+  return o;
+}
+
+double objective_at(const ProfileObjective& o, const Layout& layout, const GmwmCurve& c, const Vector& p) {
+  const Vector a = model_avar(layout, p, c, nullptr);
+  if (o.scale_dof.size() == 0) {
+    const Vector y = Eigen::Map<const Vector>(c.avar.data(), static_cast<Eigen::Index>(c.avar.size()));
+    return (o.whiten * (y - a)).squaredNorm();
+  }
+  return (o.whiten * score_residual(o, c, a, nullptr)).squaredNorm();
+}
+
+LmResult minimise(const ProfileObjective& o, const Layout& layout, const GmwmCurve& c, const Bounds& bounds,
+                  const Vector& from) {
+  if (o.scale_dof.size() == 0) return levenberg_marquardt(layout, c, o.whiten, from, bounds, c.max_iterations);
+  // r(a) ~ r(a0) - s (a - a0) = s (y* - a) with y* = a0 + r(a0) / s: a linear fit of the
+  // pseudo-data y* with the whitener Wh diag(s), repeated at the new a0.
+  constexpr int kSteps = 8;
+  // `from` itself when no step lowers the objective (it is then the local minimum found).
+  LmResult cur;
+  cur.p = from;
+  cur.cost = objective_at(o, layout, c, from);
+  cur.converged = true;
+  GmwmCurve pseudo = c;
+  for (int step = 0; step < kSteps; ++step) {
+    const Vector a0 = model_avar(layout, cur.p, c, nullptr);
+    Vector s;
+    const Vector r0 = score_residual(o, c, a0, &s);
+    for (Eigen::Index i = 0; i < a0.size(); ++i) pseudo.avar[static_cast<std::size_t>(i)] = a0(i) + r0(i) / s(i);
+    const LmResult next = levenberg_marquardt(layout, pseudo, o.whiten * s.asDiagonal(), cur.p, bounds, c.max_iterations);
+    const double cost = next.p.allFinite() ? objective_at(o, layout, c, next.p) : std::numeric_limits<double>::infinity();
+    if (!std::isfinite(cost) || cost > cur.cost + 1e-9 * std::max(1.0, cur.cost)) break;
+    const double move = (next.p - cur.p).cwiseAbs().maxCoeff();
+    cur.p = next.p;
+    cur.cost = cost;
+    cur.converged = next.converged;
+    cur.iterations += next.iterations;
+    if (move < 1e-5) break;
+  }
+  return cur;
+}
+
 namespace {
 
 /// Whether the refitted point q is still the model fitted at p: no other term's magnitude has
@@ -40,7 +115,7 @@ bool other_term_at_floor(const Layout& layout, const Bounds& bounds, const Vecto
 /// The objective with parameter j held at `value` and every other parameter refitted from
 /// `warm` (which it updates: the next point starts where this one ended); +inf where the
 /// refit leaves the model fitted at p (same_model).
-double profiled_cost(const Layout& layout, const GmwmCurve& c, const Matrix& whiten, const Bounds& bounds,
+double profiled_cost(const Layout& layout, const GmwmCurve& c, const ProfileObjective& o, const Bounds& bounds,
                      const Vector& p, Eigen::Index j, double value, Vector& warm) {
   Bounds held = bounds;
   held.lo(j) = held.hi(j) = value;
@@ -49,7 +124,7 @@ double profiled_cost(const Layout& layout, const GmwmCurve& c, const Matrix& whi
   LmResult best;
   best.cost = std::numeric_limits<double>::infinity();
   auto refit = [&](const Vector& from) {
-    LmResult r = levenberg_marquardt(layout, c, whiten, from, held, c.max_iterations);
+    LmResult r = minimise(o, layout, c, held, from);
     if (std::isfinite(r.cost) && r.cost < best.cost && same_model(layout, bounds, p, r.p, j)) best = std::move(r);
   };
   refit(start);
@@ -59,7 +134,7 @@ double profiled_cost(const Layout& layout, const GmwmCurve& c, const Matrix& whi
   // start with every variance re-solved by NNLS at the held shapes lets it.
   if (other_term_at_floor(layout, bounds, std::isfinite(best.cost) ? best.p : start, j)) {
     Vector revived = start;
-    magnitudes_by_nnls(layout, c, whiten, bounds, revived);
+    magnitudes_by_nnls(layout, c, o.whiten, bounds, revived);
     revived(j) = value;
     refit(revived);
   }
@@ -70,7 +145,7 @@ double profiled_cost(const Layout& layout, const GmwmCurve& c, const Matrix& whi
 
 /// The end of the interval on one side (direction +1 or -1): march out with doubling steps
 /// until the profiled objective rises by more than `rise`, then bisect the bracket.
-double profile_end(const Layout& layout, const GmwmCurve& c, const Matrix& whiten, const Bounds& bounds,
+double profile_end(const Layout& layout, const GmwmCurve& c, const ProfileObjective& o, const Bounds& bounds,
                    const Vector& p, double cost, Eigen::Index j, double rise, double step, int direction) {
   constexpr int kExpansions = 12;
   constexpr int kBisections = 10;
@@ -80,7 +155,7 @@ double profile_end(const Layout& layout, const GmwmCurve& c, const Matrix& white
   // Whether v is inside the interval; if so it becomes the innermost known end.
   auto accept = [&](double v) {
     Vector warm = warm_inside;
-    const double q = profiled_cost(layout, c, whiten, bounds, p, j, v, warm);
+    const double q = profiled_cost(layout, c, o, bounds, p, j, v, warm);
     if (!std::isfinite(q) || q - cost > rise) return false;
     inside = v;
     warm_inside = std::move(warm);
@@ -108,11 +183,11 @@ double profile_end(const Layout& layout, const GmwmCurve& c, const Matrix& white
 
 }  // namespace
 
-std::pair<double, double> profile_interval(const Layout& layout, const GmwmCurve& c, const Matrix& whiten,
+std::pair<double, double> profile_interval(const Layout& layout, const GmwmCurve& c, const ProfileObjective& o,
                                            const Bounds& bounds, const Vector& p, double cost, Eigen::Index j,
                                            double rise, double step) {
-  return {profile_end(layout, c, whiten, bounds, p, cost, j, rise, step, -1),
-          profile_end(layout, c, whiten, bounds, p, cost, j, rise, step, +1)};
+  return {profile_end(layout, c, o, bounds, p, cost, j, rise, step, -1),
+          profile_end(layout, c, o, bounds, p, cost, j, rise, step, +1)};
 }
 
 }  // namespace imunoise::fit::detail

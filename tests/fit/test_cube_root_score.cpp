@@ -72,5 +72,21 @@ TEST(CubeRootScore, TailsMatchTheNormalAtFewDegreesOfFreedom) {
   }
 }
 
+// The score of one estimate agrees with the residual form, and its derivative in the model value
+// (the score objective's Gauss-Newton steps) agrees with a central difference.
+TEST(CubeRootScore, OneEstimateAndItsSlopeInTheModel) {
+  for (const double nu : kDegrees) {
+    for (const double ratio : {0.2, 1.0, 3.0}) {
+      const detail::CubeRootScore s = detail::cube_root_score(ratio, 1.0, nu);
+      EXPECT_NEAR(s.z, score_of(ratio, nu), 1e-12) << "nu " << nu << ", ratio " << ratio;
+      constexpr double h = 1e-6;
+      const double slope =
+          (detail::cube_root_score(ratio, 1.0 + h, nu).z - detail::cube_root_score(ratio, 1.0 - h, nu).z) / (2.0 * h);
+      EXPECT_NEAR(s.dz_da, slope, 1e-6 * std::max(1.0, std::abs(slope))) << "nu " << nu << ", ratio " << ratio;
+      EXPECT_LT(s.dz_da, 0.0) << "the score falls as the model rises";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace imunoise::fit

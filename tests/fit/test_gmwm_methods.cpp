@@ -145,7 +145,9 @@ void ar1_study(const char* title, const std::vector<gmwm_test::Ar1Spec>& ar1, do
   auto w = tallies({truth[0], truth[1]});
   auto o = w;
   const auto n = static_cast<std::size_t>(hours * 3600.0 / tau0);
-  for (int r = 0; r < runs(); ++r) {
+  // IMUNOISE_GMWM_FIRST=r: start at record r (one record: with IMUNOISE_GMWM_RUNS=r+1).
+  const int first = std::getenv("IMUNOISE_GMWM_FIRST") ? std::atoi(std::getenv("IMUNOISE_GMWM_FIRST")) : 0;
+  for (int r = first; r < runs(); ++r) {
     const auto rate = gmwm_test::make_rate(n, tau0, n_coef, k_coef, ar1, seed0 + static_cast<std::uint64_t>(r));
     const auto points = gmwm_test::octave_points(rate, tau0);
     const auto c = gmwm_test::curve_of(points, n + 1);
@@ -175,7 +177,10 @@ TEST(SlowGmwmMethods, TwoAr1ADecadeApart3h) {
 // 1.4-1.7x the truth with a shorter T_c. The spurious fast term with K absorbing the slowest
 // (records 2, 9, 10) is now an interval the other labelling widens:
 // GmwmFit.AnotherLabellingAsGoodWidensTheIntervals; a floored K coming back in a profile:
-// GmwmFit.AProfileCanBringBackATermAtItsFloor.
+// GmwmFit.AProfileCanBringBackATermAtItsFloor. 2026-12-08, with the profile of the cube-root
+// score objective (gmwm_profile.cpp): GM3 sigma 93, GM3 T_c 92, every coverage in the band
+// (GmwmFit.TheScoreProfileReachesPastTheLongScalesSkew); still DISABLED for its 24 minutes, past
+// the slow label's 900 s timeout (docs/fit.md, "The score objective's profile").
 TEST(SlowGmwmMethods, DISABLED_ThreeAr1ADecadeApart3h) {
   ar1_study("white + random walk + AR1 (3e-4, 0.5 s) + AR1 (2e-4, 5 s) + AR1 (1e-4, 50 s), 3 h at 100 Hz",
             {{3e-4, 0.5}, {2e-4, 5.0}, {1e-4, 50.0}}, 3.0, 8000);
