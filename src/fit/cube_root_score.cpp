@@ -29,24 +29,22 @@ Moments cube_root_moments(double nu) {
 
 }  // namespace
 
-CubeRootScore cube_root_score(double a_hat, double a, double nu) {
+ScoreResidual cube_root_score_residual(double a_hat, double a, double nu, double sd) {
+  // Many degrees of freedom (or no usable model): the plain residual.
+  if (!(a_hat > 0.0) || !(a > 0.0) || !std::isfinite(nu) || nu > 1e8) return {a_hat - a, -1.0};
   const Moments m = cube_root_moments(nu);
   const double root = std::cbrt(a_hat / a);
-  return {(root - m.mean) / m.sd, -root / (3.0 * a * m.sd)};
+  return {(root - m.mean) / m.sd * sd, -root / (3.0 * a * m.sd) * sd};
 }
 
 Eigen::VectorXd cube_root_score_residual(std::span<const double> avar_hat, const Eigen::VectorXd& model,
                                          const Eigen::MatrixXd& sigma) {
   Eigen::VectorXd r(model.size());
   for (Eigen::Index i = 0; i < model.size(); ++i) {
-    const double a_hat = avar_hat[static_cast<std::size_t>(i)], a = model(i), sd = std::sqrt(sigma(i, i));
-    const double nu = 2.0 * a * a / sigma(i, i);
-    // Many degrees of freedom (or no usable model): the plain residual.
-    if (!(a_hat > 0.0) || !(a > 0.0) || !std::isfinite(nu) || nu > 1e8) {
-      r(i) = a_hat - a;
-      continue;
-    }
-    r(i) = cube_root_score(a_hat, a, nu).z * sd;
+    const double a = model(i);
+    r(i) = cube_root_score_residual(avar_hat[static_cast<std::size_t>(i)], a, 2.0 * a * a / sigma(i, i),
+                                    std::sqrt(sigma(i, i)))
+               .r;
   }
   return r;
 }

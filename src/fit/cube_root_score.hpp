@@ -9,15 +9,17 @@
 
 namespace imunoise::fit::detail {
 
-/// The standardised cube-root score of one estimate a_hat against the model value a when the
-/// estimate has nu degrees of freedom, z = ((a_hat / a)^(1/3) - m1) / sd (m1, sd: the mean and sd
-/// of (chi^2_nu / nu)^(1/3)), and its derivative in a, for a fit that minimises a quadratic
-/// form in the scores (the profile intervals' score objective, gmwm_profile.cpp).
-struct CubeRootScore {
-  double z = 0.0;
-  double dz_da = 0.0;
+/// One estimate's residual in score form, r = sd z with z = ((a_hat / a)^(1/3) - m1) / s_nu the
+/// standardised cube-root score when the estimate has nu degrees of freedom (m1, s_nu: the mean
+/// and sd of (chi^2_nu / nu)^(1/3)), and its derivative in the model value a. Where there is no
+/// usable score (no positive estimate or model, nu not finite or past 1e8) the plain residual
+/// a_hat - a, slope -1. The goodness-of-fit statistics below and the profile intervals' score
+/// objective (gmwm_profile.cpp) both take it from here.
+struct ScoreResidual {
+  double r = 0.0;
+  double dr_da = 0.0;
 };
-CubeRootScore cube_root_score(double a_hat, double a, double nu);
+ScoreResidual cube_root_score_residual(double a_hat, double a, double nu, double sd);
 
 /// a_hat - a(theta) at each tau, replaced by the standardised cube-root score times its sd. An
 /// Allan variance estimate is close to a (chi^2_nu / nu) with nu = 2 a^2 / Var (a few degrees

@@ -87,8 +87,6 @@ struct ProfileObjective {
 /// The cube-root-score objective at the optimum: whitener wh, each scale's sd and degrees of
 /// freedom 2 a^2 / Var from sigma and the model's values `model`.
 ProfileObjective score_objective(const Matrix& wh, const Matrix& sigma, const Vector& model);
-/// The objective at p.
-double objective_at(const ProfileObjective& o, const Layout& layout, const GmwmCurve& c, const Vector& p);
 /// Its local minimum from `from` within `bounds`: LM for the linear objective; for the score
 /// objective Gauss-Newton on the scores linearised in a (each step an LM fit of pseudo-data),
 /// stopped when the objective stops falling.

@@ -10,26 +10,23 @@
 namespace imunoise::fit::detail {
 namespace {
 
-/// The score objective's residual sd_i z_i(a_i) at the model values a and, in *slope, its
-/// derivative's negative -d r_i / d a_i (positive). A scale without a usable score (no positive
-/// estimate or model, or past 1e8 degrees of freedom) keeps the linear residual, as
-/// cube_root_score_residual does.
+/// The score objective's residual sd_i z_i(a_i) at the model values a (cube_root_score_residual
+/// with each scale's dof and sd held) and, in *slope, -d r_i / d a_i (positive).
 Vector score_residual(const ProfileObjective& o, const GmwmCurve& c, const Vector& a, Vector* slope) {
   Vector r(a.size());
   if (slope != nullptr) slope->resize(a.size());
   for (Eigen::Index i = 0; i < a.size(); ++i) {
-    const double a_hat = c.avar[static_cast<std::size_t>(i)], nu = o.scale_dof(i), sd = o.scale_sd(i);
-    double dr = -1.0;
-    if (a_hat > 0.0 && a(i) > 0.0 && std::isfinite(nu) && nu <= 1e8) {
-      const CubeRootScore s = cube_root_score(a_hat, a(i), nu);
-      r(i) = s.z * sd;
-      dr = s.dz_da * sd;
-    } else {
-      r(i) = a_hat - a(i);
-    }
-    if (slope != nullptr) (*slope)(i) = -dr;
+    const ScoreResidual s =
+        cube_root_score_residual(c.avar[static_cast<std::size_t>(i)], a(i), o.scale_dof(i), o.scale_sd(i));
+    r(i) = s.r;
+    if (slope != nullptr) (*slope)(i) = -s.dr_da;
   }
   return r;
+}
+
+/// The score objective ||Wh r(p)||^2 at p.
+double score_cost(const ProfileObjective& o, const Layout& layout, const GmwmCurve& c, const Vector& p) {
+  return (o.whiten * score_residual(o, c, model_avar(layout, p, c, nullptr), nullptr)).squaredNorm();
 }
 
 }  // namespace
@@ -43,15 +40,6 @@ ProfileObjective score_objective(const Matrix& wh, const Matrix& sigma, const Ve
   return o;
 }
 
-double objective_at(const ProfileObjective& o, const Layout& layout, const GmwmCurve& c, const Vector& p) {
-  const Vector a = model_avar(layout, p, c, nullptr);
-  if (o.scale_dof.size() == 0) {
-    const Vector y = Eigen::Map<const Vector>(c.avar.data(), static_cast<Eigen::Index>(c.avar.size()));
-    return (o.whiten * (y - a)).squaredNorm();
-  }
-  return (o.whiten * score_residual(o, c, a, nullptr)).squaredNorm();
-}
-
 LmResult minimise(const ProfileObjective& o, const Layout& layout, const GmwmCurve& c, const Bounds& bounds,
                   const Vector& from) {
   if (o.scale_dof.size() == 0) return levenberg_marquardt(layout, c, o.whiten, from, bounds, c.max_iterations);
@@ -61,7 +49,7 @@ LmResult minimise(const ProfileObjective& o, const Layout& layout, const GmwmCur
   // `from` itself when no step lowers the objective (it is then the local minimum found).
   LmResult cur;
   cur.p = from;
-  cur.cost = objective_at(o, layout, c, from);
+  cur.cost = score_cost(o, layout, c, from);
   cur.converged = true;
   GmwmCurve pseudo = c;
   for (int step = 0; step < kSteps; ++step) {
@@ -70,7 +58,7 @@ LmResult minimise(const ProfileObjective& o, const Layout& layout, const GmwmCur
     const Vector r0 = score_residual(o, c, a0, &s);
     for (Eigen::Index i = 0; i < a0.size(); ++i) pseudo.avar[static_cast<std::size_t>(i)] = a0(i) + r0(i) / s(i);
     const LmResult next = levenberg_marquardt(layout, pseudo, o.whiten * s.asDiagonal(), cur.p, bounds, c.max_iterations);
-    const double cost = next.p.allFinite() ? objective_at(o, layout, c, next.p) : std::numeric_limits<double>::infinity();
+    const double cost = next.p.allFinite() ? score_cost(o, layout, c, next.p) : std::numeric_limits<double>::infinity();
     if (!std::isfinite(cost) || cost > cur.cost + 1e-9 * std::max(1.0, cur.cost)) break;
     const double move = (next.p - cur.p).cwiseAbs().maxCoeff();
     cur.p = next.p;

@@ -77,13 +77,14 @@ TEST(CubeRootScore, TailsMatchTheNormalAtFewDegreesOfFreedom) {
 TEST(CubeRootScore, OneEstimateAndItsSlopeInTheModel) {
   for (const double nu : kDegrees) {
     for (const double ratio : {0.2, 1.0, 3.0}) {
-      const detail::CubeRootScore s = detail::cube_root_score(ratio, 1.0, nu);
-      EXPECT_NEAR(s.z, score_of(ratio, nu), 1e-12) << "nu " << nu << ", ratio " << ratio;
+      const detail::ScoreResidual s = detail::cube_root_score_residual(ratio, 1.0, nu, 1.0);
+      EXPECT_NEAR(s.r, score_of(ratio, nu), 1e-12) << "nu " << nu << ", ratio " << ratio;
       constexpr double h = 1e-6;
-      const double slope =
-          (detail::cube_root_score(ratio, 1.0 + h, nu).z - detail::cube_root_score(ratio, 1.0 - h, nu).z) / (2.0 * h);
-      EXPECT_NEAR(s.dz_da, slope, 1e-6 * std::max(1.0, std::abs(slope))) << "nu " << nu << ", ratio " << ratio;
-      EXPECT_LT(s.dz_da, 0.0) << "the score falls as the model rises";
+      const double slope = (detail::cube_root_score_residual(ratio, 1.0 + h, nu, 1.0).r -
+                            detail::cube_root_score_residual(ratio, 1.0 - h, nu, 1.0).r) /
+                           (2.0 * h);
+      EXPECT_NEAR(s.dr_da, slope, 1e-6 * std::max(1.0, std::abs(slope))) << "nu " << nu << ", ratio " << ratio;
+      EXPECT_LT(s.dr_da, 0.0) << "the score falls as the model rises";
     }
   }
 }
